@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Quick start 1: set up, build (release) and render. The dragon when its model is found,
+# the built-in scene otherwise. Extra arguments go to `raylane render`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cmake --preset release >/dev/null
+cmake --build --preset release --target raylane
+mkdir -p out
+if ./build/release/raylane info scenes/dragon.json >/dev/null 2>&1; then
+    ./build/release/raylane render scenes/dragon.json -o out/dragon.png "$@"
+    echo "image: $(pwd)/out/dragon.png"
+else
+    echo "render: dragon model not found (see the message above); rendering the built-in scene" >&2
+    ./build/release/raylane info scenes/dragon.json 2>&1 | head -1 >&2 || true
+    ./build/release/raylane render -o out/builtin.png "$@"
+    echo "image: $(pwd)/out/builtin.png"
+fi

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what Raylane needs from Debian 12's packages (apt-get, as root), if missing.
+set -euo pipefail
+packages=(cmake ninja-build g++ clang libclang-rt-14-dev libxsimd-dev libtbb-dev libglm-dev
+          libstb-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev)
+# Embree is only for the baseline benchmark; the renderer never links it.
+[ "${RAYLANE_NO_EMBREE:-0}" = 1 ] || packages+=(libembree-dev)
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "setup: installing ${missing[*]}" >&2
+    sudo_cmd=""
+    [ "$(id -u)" = 0 ] || sudo_cmd="sudo"
+    $sudo_cmd apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,83 @@
+// accel: the flattened binary BVH shared by both traversal paths, and the two-level scene
+// acceleration structure (a BVH per mesh, a top-level BVH over bounded objects).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/aabb.h"
+#include "scene/scene.h"
+
+namespace raylane {
+
+/// One node, 32 bytes, in depth-first order: an interior node's first child is the next node,
+/// `index` is its second child. A leaf (count > 0) holds primitives index .. index + count - 1
+/// in leaf order. `axis` is the split axis of an interior node (near child first by sign).
+struct alignas(32) BvhNode {
+    float lo[3];
+    uint32_t index;
+    float hi[3];
+    uint16_t count;
+    uint16_t axis;
+    bool is_leaf() const { return count != 0; }
+    Aabb bounds() const { return {vec3(lo[0], lo[1], lo[2]), vec3(hi[0], hi[1], hi[2])}; }
+};
+static_assert(sizeof(BvhNode) == 32 && alignof(BvhNode) == 32);
+
+/// A flattened BVH. prim_ids maps leaf order to the caller's primitive index.
+struct Bvh {
+    std::vector<BvhNode> nodes;
+    std::vector<uint32_t> prim_ids;
+};
+
+struct BuildParams {
+    int max_leaf_size = 4;  ///< leaves hold at most this many primitives (1 .. 65535)
+};
+
+/// Median split (the report's build): split along the longest axis of the centroid bounds at the
+/// median centroid (std::nth_element), equal halves, until a node has <= max_leaf_size
+/// primitives. O(n log n).
+Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params);
+
+/// Triangle vertices in BVH leaf order, ready for the watertight test (36 bytes each).
+struct TriangleVerts {
+    vec3 a, b, c;
+};
+
+struct MeshAccel {
+    Bvh bvh;
+    std::vector<TriangleVerts> verts;  ///< verts[k] is triangle bvh.prim_ids[k] of the mesh
+};
+
+/// Both levels. Objects with infinite extent (planes) are kept out of the top-level BVH and
+/// tested one by one from `unbounded`.
+struct Accel {
+    Bvh top;
+    std::vector<Aabb> object_bounds;  ///< world-space bounds per object (empty for planes)
+    std::vector<uint32_t> unbounded;  ///< object indices tested outside the BVH
+    std::vector<MeshAccel> meshes;    ///< one per Scene::meshes entry
+};
+
+MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params);
+Accel build_accel(const Scene& scene, const BuildParams& params);
+
+/// World-space bounds of one object (a transformed shape's box covers its 8 corners).
+Aabb object_bounds(const Scene& scene, const Object& object);
+
+/// Statistics `raylane info` prints.
+struct BvhStats {
+    size_t nodes = 0, leaves = 0, prims = 0;
+    int max_leaf_depth = 0;
+    double mean_leaf_depth = 0.0;
+    double sah_cost = 0.0;  ///< with C_node = 1, C_prim = 1, relative to the root's area
+    size_t bytes = 0;       ///< nodes + prim_ids
+};
+BvhStats compute_stats(const Bvh& bvh);
+
+/// Checks the invariants: every primitive in exactly one leaf, children inside their parents,
+/// leaves no larger than max_leaf_size, leaf boxes contain their primitives. Returns an empty
+/// string when all hold, else the first violation.
+std::string check_bvh(const Bvh& bvh, std::span<const Aabb> prim_bounds, int max_leaf_size);
+
+}  // namespace raylane

@@ -1,0 +1,23 @@
+// app: the `raylane` commands, one file each, and what they share.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "accel/bvh.h"
+#include "scene/scene.h"
+
+namespace raylane {
+
+/// Adds the subcommand and its options; the callback runs it and stores the exit code.
+void add_render_command(CLI::App& app, int& exit_code);
+void add_info_command(CLI::App& app, int& exit_code);
+
+/// A scene file, or the built-in scene when `path` is empty.
+Scene load_scene_or_builtin(const std::string& path);
+
+/// Milliseconds since `start` (a steady_clock time point in seconds).
+double elapsed_ms(double start_seconds);
+double now_seconds();
+
+}  // namespace raylane

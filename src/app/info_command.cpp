@@ -1,0 +1,67 @@
+// app: `raylane info SCENE`: scene contents, BVH statistics, memory and build time.
+#include <cstdio>
+#include <memory>
+
+#include "app/commands.h"
+
+namespace raylane {
+namespace {
+
+void print_bvh(const char* label, const BvhStats& s, size_t triangles, size_t extra_bytes) {
+    std::printf("%-10s %zu nodes, %zu leaves, leaf depth max %d mean %.1f, SAH cost %.1f\n", label,
+                s.nodes, s.leaves, s.max_leaf_depth, s.mean_leaf_depth, s.sah_cost);
+    const size_t bytes = s.bytes + extra_bytes;
+    if (triangles > 0)
+        std::printf("%-10s %.1f bytes per triangle (nodes, ids, vertices), %.2f MiB\n", "",
+                    double(bytes) / double(triangles), double(bytes) / (1024.0 * 1024.0));
+}
+
+int run_info(const std::string& path) {
+    const double t_load = now_seconds();
+    const Scene scene = load_scene_or_builtin(path);
+    const double load_ms = elapsed_ms(t_load);
+    const double t_build = now_seconds();
+    const Accel accel = build_accel(scene, BuildParams{});
+    const double build_ms = elapsed_ms(t_build);
+
+    const Camera& c = scene.camera;
+    std::printf("scene      %s\n", scene.source.c_str());
+    std::printf("camera     %dx%d, %d spp, %s fov %.1f deg\n", c.width, c.height, c.spp,
+                c.fov_axis == FovAxis::vertical ? "vertical" : "horizontal", double(c.fov_deg));
+    std::printf("objects    %zu (%zu spheres, %zu boxes, %zu cylinders, %zu planes, %zu triangles, "
+                "%zu meshes)\n",
+                scene.objects.size(), scene.spheres.size(), scene.boxes.size(),
+                scene.cylinders.size(), scene.planes.size(), scene.triangles.size(),
+                scene.meshes.size());
+    std::printf("materials  %zu, lights %zu\n", scene.materials.size(), scene.lights.size());
+    std::printf("triangles  %zu\n", count_triangles(scene));
+    size_t total = 0;
+    for (size_t i = 0; i < accel.meshes.size(); ++i) {
+        const MeshAccel& m = accel.meshes[i];
+        const std::string label = "mesh " + std::to_string(i);
+        std::printf("%-10s %s: %zu triangles\n", label.c_str(), scene.meshes[i].name.c_str(),
+                    m.verts.size());
+        const size_t vert_bytes = m.verts.size() * sizeof(TriangleVerts);
+        const BvhStats s = compute_stats(m.bvh);
+        print_bvh("", s, m.verts.size(), vert_bytes);
+        total += s.bytes + vert_bytes;
+    }
+    const BvhStats top = compute_stats(accel.top);
+    print_bvh("top level", top, 0, 0);
+    total += top.bytes;
+    std::printf("memory     %.2f MiB of BVH and triangle data\n", double(total) / (1024.0 * 1024.0));
+    std::printf("time       load %.1f ms, build %.1f ms\n", load_ms, build_ms);
+    return 0;
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app, int& exit_code) {
+    auto path = std::make_shared<std::string>();
+    CLI::App* cmd = app.add_subcommand("info", "print scene and BVH statistics");
+    cmd->add_option("scene", *path, "scene JSON file (default: the built-in scene)")
+        ->check(CLI::ExistingFile);
+    cmd->callback([path, &exit_code] { exit_code = run_info(*path); });
+}
+
+}  // namespace raylane

@@ -1,0 +1,41 @@
+// image: the film (linear float RGB), its encodings, and the PNG / PFM writers.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/ray.h"
+
+namespace raylane {
+
+/// How linear values become 8-bit PNG values: sRGB transfer curve (the default for colour),
+/// or linear (AOVs, and the report's look: no gamma).
+enum class Encoding : uint8_t { srgb, linear };
+
+struct Film {
+    int width = 0, height = 0;
+    std::vector<vec3> pixels;  ///< row-major, row 0 at the top, linear
+    vec3& at(int x, int y) { return pixels[static_cast<size_t>(y) * width + x]; }
+    const vec3& at(int x, int y) const { return pixels[static_cast<size_t>(y) * width + x]; }
+};
+
+Film make_film(int width, int height);
+
+/// 8-bit value of a linear channel: clamped to [0, 1], optionally sRGB-encoded, rounded.
+uint8_t encode_channel(float linear, Encoding encoding);
+
+/// Writes an 8-bit RGB PNG (stb_image_write). Written to a temporary file and renamed, so an
+/// interrupted write never leaves a half image under `path`. Throws std::runtime_error.
+void write_png(const std::string& path, const Film& film, Encoding encoding);
+
+/// Writes a little-endian linear float PFM (bottom row first, as the format says).
+void write_pfm(const std::string& path, const Film& film);
+
+/// Writes PNG or PFM by the file extension (.png, .pfm).
+void write_image(const std::string& path, const Film& film, Encoding encoding);
+
+/// False colour for a cost in [0, 1]: dark blue, through green and yellow, to white.
+vec3 false_colour(float x);
+
+}  // namespace raylane

@@ -1,0 +1,44 @@
+// render: the options and results both renderers share.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "image/film.h"
+
+namespace raylane {
+
+/// What a pixel shows. `color` is the shaded image; the others are the AOVs of --aov.
+enum class Aov : uint8_t { color, normal, depth, bvh_cost };
+
+/// Parses "color", "normal", "depth", "bvh-cost"; false when unknown.
+bool parse_aov(const std::string& name, Aov& aov);
+const char* aov_name(Aov aov);
+
+struct RenderParams {
+    int spp = 1;       ///< samples per pixel: 1 = pixel centre, more = jittered in the pixel
+    int threads = 0;   ///< 0 = all hardware threads
+    uint32_t seed = 0;
+    Aov aov = Aov::color;
+    int tile_size = 16;
+    bool progress = false;  ///< progress on stderr
+};
+
+struct RenderStats {
+    uint64_t primary_rays = 0;
+    uint64_t shadow_rays = 0;
+    uint64_t nan_samples = 0;  ///< samples that were NaN or infinite: counted, not averaged in
+    double seconds = 0.0;
+    uint64_t total_rays() const { return primary_rays + shadow_rays; }
+};
+
+struct RenderResult {
+    Film film;  ///< linear colour, or the raw AOV (normal in [-1, 1], depth t, nodes visited)
+    RenderStats stats;
+};
+
+/// Maps a raw AOV film to something to look at: normal * 0.5 + 0.5, depth / max depth,
+/// nodes visited in false colour scaled to the image's maximum. Colour passes through.
+Film visualise_aov(const Film& raw, Aov aov);
+
+}  // namespace raylane

@@ -1,0 +1,89 @@
+// render: the scalar reference renderer. Mirrored by render_packet.cpp.
+#include "render/render_scalar.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "core/rng.h"
+#include "render/camera_rays.h"
+#include "render/tiles.h"
+#include "shade/shade_scalar.h"
+#include "traverse/intersect_scalar.h"
+
+namespace raylane {
+namespace {
+
+bool finite(vec3 c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
+
+/// One sample's value for the requested output.
+vec3 sample_value(const Scene& scene, const Accel& accel, const Ray& ray, Aov aov,
+                  ShadeCounts& counts) {
+    TraversalStats stats;
+    const Hit hit = intersect_closest(scene, accel, ray, aov == Aov::bvh_cost ? &stats : nullptr);
+    switch (aov) {
+        case Aov::color:
+            return hit.hit() ? shade_hit(scene, accel, ray, hit, counts) : scene.background;
+        case Aov::normal:
+            return hit.hit() ? surface_at(scene, ray, hit).shading_normal : vec3(0.0f);
+        case Aov::depth: return vec3(hit.hit() ? hit.t : 0.0f);
+        case Aov::bvh_cost: return vec3(static_cast<float>(stats.nodes_visited));
+    }
+    return vec3(0.0f);
+}
+
+}  // namespace
+
+RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderParams& params) {
+    const auto start = std::chrono::steady_clock::now();
+    const Camera& cam = scene.camera;
+    const CameraFrame frame = make_camera_frame(cam);
+    RenderResult result;
+    result.film = make_film(cam.width, cam.height);
+    const int spp = params.spp > 0 ? params.spp : 1;
+    const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size);
+    std::atomic<uint64_t> shadow_rays{0}, nan_samples{0};
+    Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
+
+    for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
+        ShadeCounts counts;
+        uint64_t nans = 0;
+        for (int y = tile.y0; y < tile.y1; ++y) {
+            for (int x = tile.x0; x < tile.x1; ++x) {
+                const uint32_t pixel = static_cast<uint32_t>(y * cam.width + x);
+                vec3 sum(0.0f);
+                int good = 0;
+                for (int s = 0; s < spp; ++s) {
+                    // sample position: the pixel centre, or jittered in the pixel
+                    float jx = 0.5f, jy = 0.5f;
+                    if (spp > 1) {
+                        const uint32_t si = static_cast<uint32_t>(s);
+                        jx = random_float(pixel, si, dim_pixel_x, params.seed);
+                        jy = random_float(pixel, si, dim_pixel_y, params.seed);
+                    }
+                    const Ray ray = camera_ray(frame, static_cast<float>(x) + jx,
+                                               static_cast<float>(y) + jy);
+                    const vec3 value = sample_value(scene, accel, ray, params.aov, counts);
+                    if (finite(value)) {
+                        sum += value;
+                        ++good;
+                    } else {
+                        ++nans;
+                    }
+                }
+                result.film.at(x, y) = good > 0 ? sum / static_cast<float>(good) : vec3(0.0f);
+            }
+        }
+        shadow_rays += counts.shadow_rays;
+        nan_samples += nans;
+    });
+
+    result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
+    result.stats.shadow_rays = shadow_rays;
+    result.stats.nan_samples = nan_samples;
+    result.stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace raylane

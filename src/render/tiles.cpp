@@ -1,0 +1,38 @@
+// render: tiles, flush-to-zero and progress.
+#include "render/tiles.h"
+
+#include <unistd.h>
+#include <xmmintrin.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace raylane {
+
+std::vector<Tile> make_tiles(int width, int height, int tile_size) {
+    std::vector<Tile> tiles;
+    tile_size = std::max(1, tile_size);
+    for (int y = 0; y < height; y += tile_size)
+        for (int x = 0; x < width; x += tile_size)
+            tiles.push_back({x, y, std::min(width, x + tile_size), std::min(height, y + tile_size)});
+    return tiles;
+}
+
+void enable_flush_to_zero() { _mm_setcsr(_mm_getcsr() | 0x8040u); }  // FTZ | DAZ
+
+void Progress::step() {
+    const size_t n = done.fetch_add(1) + 1;
+    if (!enabled || total == 0) return;
+    const int percent = static_cast<int>(100 * n / total);
+    int old = shown.load();
+    if (percent > old && shown.compare_exchange_strong(old, percent))
+        std::fprintf(stderr, "\r%s: %3d%%", label, percent);
+}
+
+void Progress::finish() {
+    if (enabled && shown.load() >= 0) std::fprintf(stderr, "\r%s: done\n", label);
+}
+
+bool stderr_is_terminal() { return isatty(2) != 0; }
+
+}  // namespace raylane

@@ -1,0 +1,54 @@
+// render: image tiles run in parallel on oneTBB, with progress on stderr. Both renderers use it.
+#pragma once
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <vector>
+
+namespace raylane {
+
+struct Tile {
+    int x0, y0, x1, y1;  ///< pixels [x0, x1) x [y0, y1)
+};
+
+std::vector<Tile> make_tiles(int width, int height, int tile_size);
+
+/// Sets flush-to-zero and denormals-are-zero for the calling thread (numerics.md §0.2).
+void enable_flush_to_zero();
+
+/// True when stderr is a terminal (progress is shown only then).
+bool stderr_is_terminal();
+
+/// Prints "label: N%" on stderr when it changes (only when stderr is a terminal and `enabled`).
+struct Progress {
+    const char* label;
+    size_t total;
+    bool enabled;
+    std::atomic<size_t> done{0};
+    std::atomic<int> shown{-1};
+    void step();
+    void finish();
+};
+
+/// Runs body(tile) for every tile on `threads` threads (0 = all). Each tile runs on one thread;
+/// the result must not depend on which thread or in what order.
+template <class Body>
+void for_each_tile(const std::vector<Tile>& tiles, int threads, Progress& progress, Body&& body) {
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              enable_flush_to_zero();
+                              for (size_t i = range.begin(); i != range.end(); ++i) {
+                                  body(tiles[i]);
+                                  progress.step();
+                              }
+                          });
+    });
+    progress.finish();
+}
+
+}  // namespace raylane

@@ -1,0 +1,301 @@
+// traverse: scalar two-level BVH traversal. Mirrored by intersect_packet.cpp.
+#include "traverse/intersect_scalar.h"
+
+#include <cmath>
+
+#include "traverse/box_scalar.h"
+#include "traverse/cylinder_scalar.h"
+#include "traverse/plane_scalar.h"
+#include "traverse/slab_scalar.h"
+#include "traverse/sphere_scalar.h"
+#include "traverse/triangle_scalar.h"
+
+namespace raylane {
+namespace {
+
+constexpr int stack_size = 64;  // a median-split tree over 2^32 primitives is 32 levels deep
+
+/// The ray moved into an object's space; t is unchanged because the map is affine.
+Ray to_object_space(const Object& object, const Ray& ray) {
+    if (!object.has_transform) return ray;
+    Ray r = ray;
+    r.org = vec3(object.object_from_world * glm::vec4(ray.org, 1.0f));
+    r.dir = vec3(object.object_from_world * glm::vec4(ray.dir, 0.0f));
+    return r;
+}
+
+/// Upper end of the open interval a candidate must beat: ties with the current hit are let
+/// through so the (t, object, prim) tie-break can decide them.
+float t_limit(const Ray& ray, const Hit& hit) {
+    return hit.hit() ? std::nextafter(hit.t, infinity) : ray.t_max;
+}
+
+bool better(float t, uint32_t object, uint32_t prim, const Hit& hit) {
+    if (t != hit.t) return t < hit.t;
+    if (object != hit.object) return object < hit.object;
+    return prim < hit.prim;
+}
+
+float intersect_analytic(const Scene& scene, const Object& object, const Ray& ray_obj) {
+    switch (object.kind) {
+        case ShapeKind::sphere: return intersect_sphere(scene.spheres[object.shape], ray_obj);
+        case ShapeKind::box: return intersect_box(scene.boxes[object.shape], ray_obj);
+        case ShapeKind::cylinder: return intersect_cylinder(scene.cylinders[object.shape], ray_obj);
+        case ShapeKind::plane: return intersect_plane(scene.planes[object.shape], ray_obj);
+        case ShapeKind::triangle: {
+            const Triangle& tri = scene.triangles[object.shape];
+            float t, u, v;
+            const bool hit = intersect_triangle(make_watertight_ray(ray_obj), tri.p0, tri.p1,
+                                                tri.p2, ray_obj.t_min, ray_obj.t_max, t, u, v);
+            return hit ? t : infinity;
+        }
+        case ShapeKind::mesh: break;
+    }
+    return infinity;
+}
+
+// mesh: closest hit over one mesh's BVH, near child first.
+void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const Ray& ray, Hit& hit,
+                            TraversalStats& stats) {
+    if (mesh.bvh.nodes.empty()) return;
+    const WatertightRay wr = make_watertight_ray(ray);
+    const SlabRay sr = make_slab_ray(ray);
+    const int dir_neg[3] = {ray.dir.x < 0.0f, ray.dir.y < 0.0f, ray.dir.z < 0.0f};
+    uint32_t stack[stack_size];
+    int top = 0;
+    uint32_t node_index = 0;
+    for (;;) {
+        const BvhNode& node = mesh.bvh.nodes[node_index];
+        ++stats.nodes_visited;
+        float t_near;
+        const vec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
+        if (intersect_slab(sr, lo, hi, ray.t_min, t_limit(ray, hit), t_near)) {
+            if (node.is_leaf()) {
+                for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+                    ++stats.prims_tested;
+                    const TriangleVerts& tv = mesh.verts[k];
+                    float t, u, v;
+                    if (intersect_triangle(wr, tv.a, tv.b, tv.c, ray.t_min, t_limit(ray, hit), t,
+                                           u, v) &&
+                        better(t, object, mesh.bvh.prim_ids[k], hit)) {
+                        hit = {t, mesh.bvh.prim_ids[k], object, vec2(u, v)};
+                    }
+                }
+            } else if (dir_neg[node.axis]) {  // second child is nearer
+                stack[top++] = node_index + 1;
+                node_index = node.index;
+                continue;
+            } else {
+                stack[top++] = node.index;
+                node_index = node_index + 1;
+                continue;
+            }
+        }
+        if (top == 0) break;
+        node_index = stack[--top];
+    }
+}
+
+bool intersect_mesh_any(const MeshAccel& mesh, const Ray& ray, TraversalStats& stats) {
+    if (mesh.bvh.nodes.empty()) return false;
+    const WatertightRay wr = make_watertight_ray(ray);
+    const SlabRay sr = make_slab_ray(ray);
+    uint32_t stack[stack_size];
+    int top = 0;
+    uint32_t node_index = 0;
+    for (;;) {
+        const BvhNode& node = mesh.bvh.nodes[node_index];
+        ++stats.nodes_visited;
+        float t_near;
+        const vec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
+        if (intersect_slab(sr, lo, hi, ray.t_min, ray.t_max, t_near)) {
+            if (node.is_leaf()) {
+                for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+                    ++stats.prims_tested;
+                    const TriangleVerts& tv = mesh.verts[k];
+                    float t, u, v;
+                    if (intersect_triangle(wr, tv.a, tv.b, tv.c, ray.t_min, ray.t_max, t, u, v))
+                        return true;
+                }
+            } else {
+                stack[top++] = node.index;
+                node_index = node_index + 1;
+                continue;
+            }
+        }
+        if (top == 0) break;
+        node_index = stack[--top];
+    }
+    return false;
+}
+
+void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t object_index,
+                              const Ray& ray, Hit& hit, TraversalStats& stats) {
+    const Object& object = scene.objects[object_index];
+    if (object.kind == ShapeKind::mesh) {
+        intersect_mesh_closest(accel.meshes[object.shape], object_index, ray, hit, stats);
+        return;
+    }
+    ++stats.prims_tested;
+    Ray r = to_object_space(object, ray);
+    r.t_max = t_limit(ray, hit);
+    const float t = intersect_analytic(scene, object, r);
+    if (t < r.t_max && better(t, object_index, 0, hit)) hit = {t, 0, object_index, vec2(0.0f)};
+}
+
+bool intersect_object_any(const Scene& scene, const Accel& accel, uint32_t object_index,
+                          const Ray& ray, TraversalStats& stats) {
+    const Object& object = scene.objects[object_index];
+    if (object.kind == ShapeKind::mesh)
+        return intersect_mesh_any(accel.meshes[object.shape], ray, stats);
+    ++stats.prims_tested;
+    return intersect_analytic(scene, object, to_object_space(object, ray)) < ray.t_max;
+}
+
+}  // namespace
+
+Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
+                      TraversalStats* stats_out) {
+    TraversalStats stats;
+    Hit hit;
+    for (uint32_t object : accel.unbounded)
+        intersect_object_closest(scene, accel, object, ray, hit, stats);
+    if (!accel.top.nodes.empty()) {
+        const SlabRay sr = make_slab_ray(ray);
+        const int dir_neg[3] = {ray.dir.x < 0.0f, ray.dir.y < 0.0f, ray.dir.z < 0.0f};
+        uint32_t stack[stack_size];
+        int top = 0;
+        uint32_t node_index = 0;
+        for (;;) {
+            const BvhNode& node = accel.top.nodes[node_index];
+            ++stats.nodes_visited;
+            float t_near;
+            const vec3 lo(node.lo[0], node.lo[1], node.lo[2]);
+            const vec3 hi(node.hi[0], node.hi[1], node.hi[2]);
+            if (intersect_slab(sr, lo, hi, ray.t_min, t_limit(ray, hit), t_near)) {
+                if (node.is_leaf()) {
+                    for (uint32_t k = node.index; k < node.index + node.count; ++k)
+                        intersect_object_closest(scene, accel, accel.top.prim_ids[k], ray, hit,
+                                                 stats);
+                } else if (dir_neg[node.axis]) {
+                    stack[top++] = node_index + 1;
+                    node_index = node.index;
+                    continue;
+                } else {
+                    stack[top++] = node.index;
+                    node_index = node_index + 1;
+                    continue;
+                }
+            }
+            if (top == 0) break;
+            node_index = stack[--top];
+        }
+    }
+    if (stats_out) {
+        stats_out->nodes_visited += stats.nodes_visited;
+        stats_out->prims_tested += stats.prims_tested;
+    }
+    return hit;
+}
+
+bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
+                   TraversalStats* stats_out) {
+    TraversalStats stats;
+    bool found = false;
+    for (uint32_t object : accel.unbounded) {
+        if (intersect_object_any(scene, accel, object, ray, stats)) {
+            found = true;
+            break;
+        }
+    }
+    if (!found && !accel.top.nodes.empty()) {
+        const SlabRay sr = make_slab_ray(ray);
+        uint32_t stack[stack_size];
+        int top = 0;
+        uint32_t node_index = 0;
+        for (;;) {
+            const BvhNode& node = accel.top.nodes[node_index];
+            ++stats.nodes_visited;
+            float t_near;
+            const vec3 lo(node.lo[0], node.lo[1], node.lo[2]);
+            const vec3 hi(node.hi[0], node.hi[1], node.hi[2]);
+            if (intersect_slab(sr, lo, hi, ray.t_min, ray.t_max, t_near)) {
+                if (node.is_leaf()) {
+                    for (uint32_t k = node.index; k < node.index + node.count && !found; ++k)
+                        found = intersect_object_any(scene, accel, accel.top.prim_ids[k], ray,
+                                                     stats);
+                    if (found) break;
+                } else {
+                    stack[top++] = node.index;
+                    node_index = node_index + 1;
+                    continue;
+                }
+            }
+            if (top == 0) break;
+            node_index = stack[--top];
+        }
+    }
+    if (stats_out) {
+        stats_out->nodes_visited += stats.nodes_visited;
+        stats_out->prims_tested += stats.prims_tested;
+    }
+    return found;
+}
+
+SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
+    SurfacePoint sp;
+    const Object& object = scene.objects[hit.object];
+    sp.material = object.material;
+    if (object.kind == ShapeKind::mesh) {
+        const Mesh& mesh = scene.meshes[object.shape];
+        const uvec3 tri = mesh.tris[hit.prim];
+        const vec3 a = mesh.positions[tri.x], b = mesh.positions[tri.y], c = mesh.positions[tri.z];
+        const float u = hit.uv.x, v = hit.uv.y, w = 1.0f - u - v;
+        sp.position = w * a + u * b + v * c;  // from barycentrics, not o + t d (numerics.md §3)
+        sp.geometric_normal = geometry_triangle(a, b, c, u, v).normal;
+        sp.shading_normal = sp.geometric_normal;
+        if (!mesh.normal_tris.empty()) {
+            const uvec3 nt = mesh.normal_tris[hit.prim];
+            const vec3 n = w * mesh.normals[nt.x] + u * mesh.normals[nt.y] + v * mesh.normals[nt.z];
+            const float len = glm::length(n);
+            if (len > 0.0f && std::isfinite(len)) sp.shading_normal = n / len;
+        }
+        sp.uv = vec2(u, v);
+        if (!mesh.uv_tris.empty()) {
+            const uvec3 ut = mesh.uv_tris[hit.prim];
+            sp.uv = w * mesh.uvs[ut.x] + u * mesh.uvs[ut.y] + v * mesh.uvs[ut.z];
+        }
+        return sp;
+    }
+    const Ray r = to_object_space(object, ray);
+    const vec3 p = r.org + hit.t * r.dir;
+    LocalGeometry g;
+    switch (object.kind) {
+        case ShapeKind::sphere: g = geometry_sphere(scene.spheres[object.shape], p); break;
+        case ShapeKind::box: g = geometry_box(scene.boxes[object.shape], p); break;
+        case ShapeKind::cylinder: g = geometry_cylinder(scene.cylinders[object.shape], p); break;
+        case ShapeKind::plane: g = geometry_plane(scene.planes[object.shape], p); break;
+        case ShapeKind::triangle: {
+            const Triangle& t = scene.triangles[object.shape];
+            float tt, u = 0.0f, v = 0.0f;
+            intersect_triangle(make_watertight_ray(r), t.p0, t.p1, t.p2, -infinity, infinity, tt,
+                               u, v);
+            g = geometry_triangle(t.p0, t.p1, t.p2, u, v);
+            break;
+        }
+        case ShapeKind::mesh: break;
+    }
+    sp.uv = g.uv;
+    if (object.has_transform) {
+        sp.position = vec3(object.world_from_object * glm::vec4(p, 1.0f));
+        const glm::mat3 normal_matrix = glm::transpose(glm::mat3(object.object_from_world));
+        sp.geometric_normal = glm::normalize(normal_matrix * g.normal);
+    } else {
+        sp.position = p;
+        sp.geometric_normal = g.normal;
+    }
+    sp.shading_normal = sp.geometric_normal;
+    return sp;
+}
+
+}  // namespace raylane

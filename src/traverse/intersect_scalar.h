@@ -1,0 +1,32 @@
+// traverse: closest-hit and any-hit queries of one ray against the whole scene (both BVH levels),
+// the reference path. Mirrored by intersect_packet.h.
+#pragma once
+
+#include "accel/bvh.h"
+#include "core/ray.h"
+#include "scene/scene.h"
+
+namespace raylane {
+
+/// The closest hit in (ray.t_min, ray.t_max). Ties in t go to the smaller object index, then the
+/// smaller primitive index, so the answer does not depend on traversal order.
+Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
+                      TraversalStats* stats = nullptr);
+
+/// True when anything is hit in (ray.t_min, ray.t_max) (shadow rays).
+bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
+                   TraversalStats* stats = nullptr);
+
+/// Everything shading needs about a hit, in world space.
+struct SurfacePoint {
+    vec3 position{0.0f};
+    vec3 geometric_normal{0.0f, 1.0f, 0.0f};  ///< unit, on the side the shape's winding gives
+    vec3 shading_normal{0.0f, 1.0f, 0.0f};    ///< unit; interpolated vertex normal for meshes
+    vec2 uv{0.0f};
+    uint32_t material = 0;
+};
+
+/// Evaluates position, normals and uv at a hit found by intersect_closest.
+SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit);
+
+}  // namespace raylane

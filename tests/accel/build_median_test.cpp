@@ -1,0 +1,116 @@
+// Tests of accel/build_median.cpp and accel/check_bvh.cpp: invariants of the median-split BVH.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "accel/bvh.h"
+
+namespace raylane {
+namespace {
+
+std::vector<Aabb> random_boxes(size_t n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-10.0f, 10.0f), size(0.0f, 0.5f);
+    std::vector<Aabb> boxes(n);
+    for (Aabb& b : boxes) {
+        b.lo = vec3(pos(rng), pos(rng), pos(rng));
+        b.hi = b.lo + vec3(size(rng), size(rng), size(rng));
+    }
+    return boxes;
+}
+
+TEST(BuildMedian, EmptyInputGivesEmptyBvh) {
+    const Bvh bvh = build_bvh_median({}, BuildParams{});
+    EXPECT_TRUE(bvh.nodes.empty());
+    EXPECT_EQ(check_bvh(bvh, {}, 4), "");
+}
+
+TEST(BuildMedian, SinglePrimitiveIsOneLeaf) {
+    const std::vector<Aabb> boxes = random_boxes(1, 1);
+    const Bvh bvh = build_bvh_median(boxes, BuildParams{});
+    ASSERT_EQ(bvh.nodes.size(), 1u);
+    EXPECT_TRUE(bvh.nodes[0].is_leaf());
+    EXPECT_EQ(check_bvh(bvh, boxes, 4), "");
+}
+
+TEST(BuildMedian, HoldsInvariantsForEveryLeafSize) {
+    for (int leaf : {1, 2, 4, 5, 8}) {
+        for (size_t n : {2u, 3u, 7u, 100u, 1000u, 4097u}) {
+            const std::vector<Aabb> boxes = random_boxes(n, static_cast<uint32_t>(n + leaf));
+            const Bvh bvh = build_bvh_median(boxes, BuildParams{leaf});
+            EXPECT_EQ(check_bvh(bvh, boxes, leaf), "") << "n=" << n << " leaf=" << leaf;
+        }
+    }
+}
+
+TEST(BuildMedian, SplitsIntoEqualHalves) {
+    const std::vector<Aabb> boxes = random_boxes(1000, 7);
+    const Bvh bvh = build_bvh_median(boxes, BuildParams{4});
+    // every interior node's children differ in primitive count by at most one
+    std::vector<uint32_t> count(bvh.nodes.size(), 0);
+    for (size_t i = bvh.nodes.size(); i-- > 0;) {
+        const BvhNode& n = bvh.nodes[i];
+        count[i] = n.is_leaf() ? n.count : count[i + 1] + count[n.index];
+        if (!n.is_leaf()) {
+            const int diff = int(count[i + 1]) - int(count[n.index]);
+            EXPECT_LE(std::abs(diff), 1) << "node " << i;
+        }
+    }
+    EXPECT_EQ(count[0], 1000u);
+}
+
+TEST(BuildMedian, LeftHalfLiesBelowTheMedianOnTheSplitAxis) {
+    const std::vector<Aabb> boxes = random_boxes(513, 3);
+    const Bvh bvh = build_bvh_median(boxes, BuildParams{4});
+    const BvhNode& root = bvh.nodes[0];
+    ASSERT_FALSE(root.is_leaf());
+    // all centroids of the first child's subtree <= all of the second child's, on root.axis
+    auto max_of = [&](uint32_t begin, uint32_t end) {
+        float m = -infinity;
+        for (uint32_t k = begin; k < end; ++k)
+            m = std::max(m, boxes[bvh.prim_ids[k]].center()[root.axis]);
+        return m;
+    };
+    auto min_of = [&](uint32_t begin, uint32_t end) {
+        float m = infinity;
+        for (uint32_t k = begin; k < end; ++k)
+            m = std::min(m, boxes[bvh.prim_ids[k]].center()[root.axis]);
+        return m;
+    };
+    EXPECT_LE(max_of(0, 256), min_of(256, 513));
+}
+
+TEST(BuildMedian, AllCentroidsEqualStillTerminates) {
+    std::vector<Aabb> boxes(300, Aabb{vec3(1.0f), vec3(2.0f)});
+    const Bvh bvh = build_bvh_median(boxes, BuildParams{4});
+    EXPECT_EQ(check_bvh(bvh, boxes, 4), "");
+}
+
+TEST(CheckBvh, DetectsAPrimitiveInTwoLeaves) {
+    const std::vector<Aabb> boxes = random_boxes(64, 9);
+    Bvh bvh = build_bvh_median(boxes, BuildParams{4});
+    bvh.prim_ids[1] = bvh.prim_ids[0];
+    EXPECT_NE(check_bvh(bvh, boxes, 4), "");
+}
+
+TEST(CheckBvh, DetectsAChildOutsideItsParent) {
+    const std::vector<Aabb> boxes = random_boxes(64, 11);
+    Bvh bvh = build_bvh_median(boxes, BuildParams{4});
+    bvh.nodes[1].hi[0] = bvh.nodes[0].hi[0] + 1.0f;
+    EXPECT_NE(check_bvh(bvh, boxes, 4), "");
+}
+
+TEST(ComputeStats, CountsNodesLeavesAndDepth) {
+    const std::vector<Aabb> boxes = random_boxes(1024, 5);
+    const Bvh bvh = build_bvh_median(boxes, BuildParams{4});
+    const BvhStats s = compute_stats(bvh);
+    EXPECT_EQ(s.nodes, bvh.nodes.size());
+    EXPECT_EQ(s.leaves, 256u);  // 1024 halves evenly down to leaves of 4
+    EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
+    EXPECT_EQ(s.max_leaf_depth, 8);
+    EXPECT_DOUBLE_EQ(s.mean_leaf_depth, 8.0);
+    EXPECT_GT(s.sah_cost, 1.0);
+}
+
+}  // namespace
+}  // namespace raylane

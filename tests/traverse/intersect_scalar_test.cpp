@@ -1,0 +1,166 @@
+// Tests of traverse/intersect_scalar.cpp: two-level BVH traversal against brute force.
+#include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
+
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <random>
+
+#include "io/load_mesh.h"
+#include "traverse/intersect_scalar.h"
+#include "traverse/triangle_scalar.h"
+
+namespace raylane {
+namespace {
+
+#ifdef RAYLANE_SANITIZED
+constexpr int bunny_rays = 2000;
+#else
+constexpr int bunny_rays = 100000;
+#endif
+
+/// Closest hit over every triangle of one mesh object, with the traversal's tie-break.
+Hit brute_force_mesh(const Mesh& mesh, uint32_t object, const Ray& ray) {
+    const WatertightRay wr = make_watertight_ray(ray);
+    Hit best;
+    for (uint32_t i = 0; i < mesh.tris.size(); ++i) {
+        const uvec3 t = mesh.tris[i];
+        float th, u, v;
+        if (intersect_triangle(wr, mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z],
+                               ray.t_min, ray.t_max, th, u, v) &&
+            (th < best.t || (th == best.t && i < best.prim)))
+            best = {th, i, object, vec2(u, v)};
+    }
+    return best;
+}
+
+/// Rays from a sphere around `box` towards random points inside it, plus random directions.
+std::vector<Ray> random_rays(const Aabb& box, int n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+    const vec3 c = box.center();
+    const float r = glm::length(box.extent());
+    std::vector<Ray> rays(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        const float z = 2.0f * uni(rng) - 1.0f, phi = 6.2831853f * uni(rng);
+        const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        Ray& ray = rays[static_cast<size_t>(i)];
+        ray.org = c + r * vec3(s * std::cos(phi), s * std::sin(phi), z);
+        if (i % 4 == 3) {  // a random direction: many of these miss
+            ray.dir = glm::normalize(vec3(uni(rng), uni(rng), uni(rng)) - 0.5f);
+        } else {
+            const vec3 target = box.lo + box.extent() * vec3(uni(rng), uni(rng), uni(rng));
+            ray.dir = target - ray.org;
+        }
+        if (i % 16 == 5) ray.org = box.lo + box.extent() * vec3(uni(rng), uni(rng), uni(rng));
+    }
+    return rays;
+}
+
+TEST(IntersectScalar, ClosestHitEqualsBruteForceOnTheBunny) {
+    const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/bunny.ply";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found";
+    Scene scene;
+    scene.meshes.push_back(load_mesh(path));
+    scene.materials.push_back({});
+    scene.objects.push_back({ShapeKind::mesh, 0, 0});
+    const Accel accel = build_accel(scene, BuildParams{});
+    const std::vector<Ray> rays = random_rays(accel.object_bounds[0], bunny_rays, 42);
+    std::vector<Hit> got(rays.size()), want(rays.size());
+    tbb::parallel_for(size_t(0), rays.size(), [&](size_t i) {
+        got[i] = intersect_closest(scene, accel, rays[i]);
+        want[i] = brute_force_mesh(scene.meshes[0], 0, rays[i]);
+    });
+    int hits = 0, mismatches = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        hits += want[i].hit();
+        if (got[i].prim != want[i].prim || got[i].t != want[i].t) {
+            if (++mismatches <= 5)
+                ADD_FAILURE() << "ray " << i << ": bvh prim " << got[i].prim << " t " << got[i].t
+                              << ", brute force prim " << want[i].prim << " t " << want[i].t;
+        }
+        // any-hit agrees with closest-hit
+        if (i % 8 == 0) EXPECT_EQ(intersect_any(scene, accel, rays[i]), want[i].hit());
+    }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_GT(hits, bunny_rays / 2);  // the test rays mostly hit: the comparison means something
+}
+
+TEST(IntersectScalar, EveryShapeKindThroughTheTopLevelEqualsBruteForce) {
+    Scene scene = make_builtin_scene();
+    const Accel accel = build_accel(scene, BuildParams{1});
+    Aabb bounds;
+    for (const Aabb& b : accel.object_bounds)
+        if (!b.empty()) bounds.grow(b);
+    const std::vector<Ray> rays = random_rays(bounds, 20000, 7);
+    int hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const Hit got = intersect_closest(scene, accel, rays[i]);
+        // brute force: every object alone in its own scene
+        Hit want;
+        for (uint32_t o = 0; o < scene.objects.size(); ++o) {
+            Scene one = scene;
+            one.objects = {scene.objects[o]};
+            const Accel a1 = build_accel(one, BuildParams{});
+            Hit h = intersect_closest(one, a1, rays[i]);
+            if (h.hit() && (h.t < want.t || (h.t == want.t && o < want.object))) {
+                want = h;
+                want.object = o;
+            }
+        }
+        hits += want.hit();
+        ASSERT_EQ(got.object, want.object) << "ray " << i;
+        ASSERT_EQ(got.t, want.t) << "ray " << i;
+        ASSERT_EQ(intersect_any(scene, accel, rays[i]), want.hit()) << "ray " << i;
+        if (i > 2000) break;
+    }
+    EXPECT_GT(hits, 500);
+}
+
+TEST(IntersectScalar, EmptySceneHitsNothing) {
+    Scene scene;
+    const Accel accel = build_accel(scene, BuildParams{});
+    Ray ray;
+    EXPECT_FALSE(intersect_closest(scene, accel, ray).hit());
+    EXPECT_FALSE(intersect_any(scene, accel, ray));
+}
+
+TEST(IntersectScalar, RespectsTheRayInterval) {
+    Scene scene;
+    scene.materials.push_back({});
+    scene.spheres.push_back({vec3(0.0f, 0.0f, 5.0f), 1.0f});
+    scene.objects.push_back({ShapeKind::sphere, 0, 0});
+    const Accel accel = build_accel(scene, BuildParams{});
+    Ray ray;  // from the origin along +z: hits at t = 4
+    EXPECT_FLOAT_EQ(intersect_closest(scene, accel, ray).t, 4.0f);
+    ray.t_max = 4.0f;  // open interval: t = 4 is excluded
+    EXPECT_FALSE(intersect_any(scene, accel, ray));
+    ray.t_max = 0.0f;
+    EXPECT_FALSE(intersect_closest(scene, accel, ray).hit());
+    ray.t_max = infinity;
+    ray.t_min = 4.5f;  // inside: the far side at t = 6
+    EXPECT_FLOAT_EQ(intersect_closest(scene, accel, ray).t, 6.0f);
+}
+
+TEST(IntersectScalar, TransformedSphereMovesWithItsTransform) {
+    Scene scene;
+    scene.materials.push_back({});
+    scene.spheres.push_back({vec3(0.0f), 1.0f});
+    Object o{ShapeKind::sphere, 0, 0};
+    o.has_transform = true;
+    o.world_from_object = glm::translate(mat4(1.0f), vec3(0.0f, 0.0f, 10.0f)) *
+                          glm::scale(mat4(1.0f), vec3(2.0f));
+    o.object_from_world = glm::inverse(o.world_from_object);
+    scene.objects.push_back(o);
+    const Accel accel = build_accel(scene, BuildParams{});
+    Ray ray;
+    const Hit hit = intersect_closest(scene, accel, ray);
+    ASSERT_TRUE(hit.hit());
+    EXPECT_FLOAT_EQ(hit.t, 8.0f);
+    const SurfacePoint sp = surface_at(scene, ray, hit);
+    EXPECT_NEAR(sp.geometric_normal.z, -1.0f, 1e-6f);
+    EXPECT_NEAR(sp.position.z, 8.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace raylane
