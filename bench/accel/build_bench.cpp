@@ -1,0 +1,70 @@
+// Benchmarks of accel/build_median.cpp: the median-split BVH of the bunny, the dragon, and the
+// dragon subdivided to 400k and 1.6M triangles (how build time grows with n).
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <map>
+
+#include "accel/bvh.h"
+#include "io/load_mesh.h"
+
+namespace raylane {
+namespace {
+
+/// Splits every triangle into four at its edge midpoints (positions only).
+Mesh subdivide(const Mesh& in) {
+    Mesh out;
+    out.positions = in.positions;
+    out.tris.reserve(in.tris.size() * 4);
+    for (const uvec3& t : in.tris) {
+        const uint32_t base = static_cast<uint32_t>(out.positions.size());
+        const vec3 a = in.positions[t.x], b = in.positions[t.y], c = in.positions[t.z];
+        out.positions.push_back(0.5f * (a + b));
+        out.positions.push_back(0.5f * (b + c));
+        out.positions.push_back(0.5f * (c + a));
+        const uint32_t ab = base, bc = base + 1, ca = base + 2;
+        out.tris.push_back({t.x, ab, ca});
+        out.tris.push_back({ab, t.y, bc});
+        out.tris.push_back({ca, bc, t.z});
+        out.tris.push_back({ab, bc, ca});
+    }
+    return out;
+}
+
+/// Loaded once per process; level = number of subdivisions.
+const Mesh* model(const std::string& file, int level) {
+    static std::map<std::pair<std::string, int>, Mesh> cache;
+    auto key = std::make_pair(file, level);
+    if (auto it = cache.find(key); it != cache.end()) return &it->second;
+    const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/" + file;
+    if (!std::filesystem::exists(path)) return nullptr;
+    Mesh m = level == 0 ? load_mesh(path) : subdivide(*model(file, level - 1));
+    return &cache.emplace(key, std::move(m)).first->second;
+}
+
+void BM_BuildMedian(benchmark::State& state, const char* file, int level) {
+    const Mesh* mesh = model(file, level);
+    if (!mesh) {
+        state.SkipWithError("model not found");
+        return;
+    }
+    for (auto _ : state) {
+        MeshAccel accel = build_mesh_accel(*mesh, BuildParams{});
+        benchmark::DoNotOptimize(accel.bvh.nodes.data());
+    }
+    const double n = static_cast<double>(mesh->tris.size());
+    state.counters["triangles"] = n;
+    state.counters["triangles/s"] =
+        benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
+    state.SetComplexityN(static_cast<int64_t>(n));
+}
+
+BENCHMARK_CAPTURE(BM_BuildMedian, bunny, "bunny.ply", 0)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BuildMedian, dragon_100k, "dragon.ply", 0)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BuildMedian, dragon_400k, "dragon.ply", 1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BuildMedian, dragon_1600k, "dragon.ply", 2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace raylane
+
+BENCHMARK_MAIN();

@@ -1,0 +1,54 @@
+// Benchmarks of render/: full frames of scenes/dragon.json (1920x1080, 1 sample, two point
+// lights with shadows) on 1 and 2 threads.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "io/load_scene.h"
+#include "render/render_scalar.h"
+
+namespace raylane {
+namespace {
+
+struct Loaded {
+    Scene scene;
+    Accel accel;
+};
+
+const Loaded* dragon_scene() {
+    static Loaded* loaded = [] () -> Loaded* {
+        const std::string path = std::string(RAYLANE_SOURCE_DIR) + "/scenes/dragon.json";
+        try {
+            auto* l = new Loaded{load_scene(path), {}};
+            l->accel = build_accel(l->scene, BuildParams{});
+            return l;
+        } catch (const std::exception&) {
+            return nullptr;
+        }
+    }();
+    return loaded;
+}
+
+void BM_Frame_Scalar(benchmark::State& state) {
+    const Loaded* l = dragon_scene();
+    if (!l) {
+        state.SkipWithError("scenes/dragon.json or its model not found");
+        return;
+    }
+    RenderParams params;
+    params.threads = static_cast<int>(state.range(0));
+    uint64_t rays = 0;
+    for (auto _ : state) {
+        RenderResult r = render_scalar(l->scene, l->accel, params);
+        rays += r.stats.total_rays();
+        benchmark::DoNotOptimize(r.film.pixels.data());
+    }
+    state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+}
+
+BENCHMARK(BM_Frame_Scalar)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace raylane
+
+BENCHMARK_MAIN();
