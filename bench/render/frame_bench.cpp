@@ -16,7 +16,7 @@ struct Loaded {
 };
 
 const Loaded* dragon_scene() {
-    static Loaded* loaded = [] () -> Loaded* {
+    static Loaded* loaded = []() -> Loaded* {
         const std::string path = std::string(RAYLANE_SOURCE_DIR) + "/scenes/dragon.json";
         try {
             auto* l = new Loaded{load_scene(path), {}};
@@ -43,7 +43,8 @@ void BM_Frame_Scalar(benchmark::State& state) {
         rays += r.stats.total_rays();
         benchmark::DoNotOptimize(r.film.pixels.data());
     }
-    state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+    state.counters["rays/s"] =
+        benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
 }
 
 BENCHMARK(BM_Frame_Scalar)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

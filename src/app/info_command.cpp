@@ -28,11 +28,11 @@ int run_info(const std::string& path) {
     std::printf("scene      %s\n", scene.source.c_str());
     std::printf("camera     %dx%d, %d spp, %s fov %.1f deg\n", c.width, c.height, c.spp,
                 c.fov_axis == FovAxis::vertical ? "vertical" : "horizontal", double(c.fov_deg));
-    std::printf("objects    %zu (%zu spheres, %zu boxes, %zu cylinders, %zu planes, %zu triangles, "
-                "%zu meshes)\n",
-                scene.objects.size(), scene.spheres.size(), scene.boxes.size(),
-                scene.cylinders.size(), scene.planes.size(), scene.triangles.size(),
-                scene.meshes.size());
+    std::printf(
+        "objects    %zu (%zu spheres, %zu boxes, %zu cylinders, %zu planes, %zu triangles, "
+        "%zu meshes)\n",
+        scene.objects.size(), scene.spheres.size(), scene.boxes.size(), scene.cylinders.size(),
+        scene.planes.size(), scene.triangles.size(), scene.meshes.size());
     std::printf("materials  %zu, lights %zu\n", scene.materials.size(), scene.lights.size());
     std::printf("triangles  %zu\n", count_triangles(scene));
     size_t total = 0;
@@ -49,7 +49,8 @@ int run_info(const std::string& path) {
     const BvhStats top = compute_stats(accel.top);
     print_bvh("top level", top, 0, 0);
     total += top.bytes;
-    std::printf("memory     %.2f MiB of BVH and triangle data\n", double(total) / (1024.0 * 1024.0));
+    std::printf("memory     %.2f MiB of BVH and triangle data\n",
+                double(total) / (1024.0 * 1024.0));
     std::printf("time       load %.1f ms, build %.1f ms\n", load_ms, build_ms);
     return 0;
 }

@@ -1,10 +1,11 @@
 // app: `raylane render [SCENE] [-o FILE] [--spp N] [--threads N] [--width W --height H] [--aov A]`.
+#include <tbb/info.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <filesystem>
-#include <tbb/info.h>
+#include <memory>
 
 #include "app/commands.h"
 #include "core/error.h"
@@ -26,17 +27,19 @@ void apply_resolution(Camera& cam, int width, int height) {
         cam.width = width;
         cam.height = height;
     } else if (width > 0) {
-        cam.height = std::max(1, static_cast<int>(std::lround(double(width) * cam.height / cam.width)));
+        cam.height =
+            std::max(1, static_cast<int>(std::lround(double(width) * cam.height / cam.width)));
         cam.width = width;
     } else if (height > 0) {
-        cam.width = std::max(1, static_cast<int>(std::lround(double(height) * cam.width / cam.height)));
+        cam.width =
+            std::max(1, static_cast<int>(std::lround(double(height) * cam.width / cam.height)));
         cam.height = height;
     }
 }
 
 std::string default_output(const RenderOptions& o) {
-    std::string stem = o.scene_path.empty() ? "builtin"
-                                            : std::filesystem::path(o.scene_path).stem().string();
+    std::string stem =
+        o.scene_path.empty() ? "builtin" : std::filesystem::path(o.scene_path).stem().string();
     if (o.aov != "color") stem += "-" + o.aov;
     return stem + ".png";
 }
@@ -74,7 +77,8 @@ int run_render(const RenderOptions& o) {
                 static_cast<unsigned long long>(s.shadow_rays));
     std::printf("time       load %.1f ms, build %.1f ms, render %.1f ms\n", load_ms, build_ms,
                 1000.0 * s.seconds);
-    std::printf("speed      %.2f Mrays/s\n", s.seconds > 0 ? s.total_rays() / s.seconds * 1e-6 : 0.0);
+    std::printf("speed      %.2f Mrays/s\n",
+                s.seconds > 0 ? double(s.total_rays()) / s.seconds * 1e-6 : 0.0);
     if (s.nan_samples > 0)
         std::printf("warning    %llu NaN or infinite samples were left out\n",
                     static_cast<unsigned long long>(s.nan_samples));

@@ -82,9 +82,8 @@ void write_pfm(const std::string& path, const Film& film) {
 
 void write_image(const std::string& path, const Film& film, Encoding encoding) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) {
-        return static_cast<char>(std::tolower(c));
-    });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (ext == ".pfm")
         write_pfm(path, film);
     else if (ext == ".png")
@@ -96,8 +95,11 @@ void write_image(const std::string& path, const Film& film, Encoding encoding) {
 vec3 false_colour(float x) {
     x = std::isfinite(x) ? std::clamp(x, 0.0f, 1.0f) : 1.0f;
     // piecewise-linear ramp through five stops
-    static const vec3 stops[5] = {{0.0f, 0.0f, 0.25f}, {0.0f, 0.35f, 0.9f}, {0.1f, 0.8f, 0.2f},
-                                  {1.0f, 0.85f, 0.0f}, {1.0f, 1.0f, 1.0f}};
+    static const vec3 stops[5] = {{0.0f, 0.0f, 0.25f},
+                                  {0.0f, 0.35f, 0.9f},
+                                  {0.1f, 0.8f, 0.2f},
+                                  {1.0f, 0.85f, 0.0f},
+                                  {1.0f, 1.0f, 1.0f}};
     const float s = x * 4.0f;
     const int i = std::min(3, static_cast<int>(s));
     const float f = s - static_cast<float>(i);

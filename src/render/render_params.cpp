@@ -18,10 +18,14 @@ bool parse_aov(const std::string& name, Aov& aov) {
 
 const char* aov_name(Aov aov) {
     switch (aov) {
-        case Aov::color: return "color";
-        case Aov::normal: return "normal";
-        case Aov::depth: return "depth";
-        case Aov::bvh_cost: return "bvh-cost";
+        case Aov::color:
+            return "color";
+        case Aov::normal:
+            return "normal";
+        case Aov::depth:
+            return "depth";
+        case Aov::bvh_cost:
+            return "bvh-cost";
     }
     return "?";
 }
@@ -33,10 +37,17 @@ Film visualise_aov(const Film& raw, Aov aov) {
         if (std::isfinite(p.x)) max_value = std::max(max_value, p.x);
     for (vec3& p : out.pixels) {
         switch (aov) {
-            case Aov::color: break;
-            case Aov::normal: p = p * 0.5f + 0.5f; break;
-            case Aov::depth: p = vec3(max_value > 0.0f ? p.x / max_value : 0.0f); break;
-            case Aov::bvh_cost: p = false_colour(max_value > 0.0f ? p.x / max_value : 0.0f); break;
+            case Aov::color:
+                break;
+            case Aov::normal:
+                p = p * 0.5f + 0.5f;
+                break;
+            case Aov::depth:
+                p = vec3(max_value > 0.0f ? p.x / max_value : 0.0f);
+                break;
+            case Aov::bvh_cost:
+                p = false_colour(max_value > 0.0f ? p.x / max_value : 0.0f);
+                break;
         }
     }
     return out;

@@ -16,8 +16,8 @@ bool parse_aov(const std::string& name, Aov& aov);
 const char* aov_name(Aov aov);
 
 struct RenderParams {
-    int spp = 1;       ///< samples per pixel: 1 = pixel centre, more = jittered in the pixel
-    int threads = 0;   ///< 0 = all hardware threads
+    int spp = 1;      ///< samples per pixel: 1 = pixel centre, more = jittered in the pixel
+    int threads = 0;  ///< 0 = all hardware threads
     uint32_t seed = 0;
     Aov aov = Aov::color;
     int tile_size = 16;

@@ -26,8 +26,10 @@ vec3 sample_value(const Scene& scene, const Accel& accel, const Ray& ray, Aov ao
             return hit.hit() ? shade_hit(scene, accel, ray, hit, counts) : scene.background;
         case Aov::normal:
             return hit.hit() ? surface_at(scene, ray, hit).shading_normal : vec3(0.0f);
-        case Aov::depth: return vec3(hit.hit() ? hit.t : 0.0f);
-        case Aov::bvh_cost: return vec3(static_cast<float>(stats.nodes_visited));
+        case Aov::depth:
+            return vec3(hit.hit() ? hit.t : 0.0f);
+        case Aov::bvh_cost:
+            return vec3(static_cast<float>(stats.nodes_visited));
     }
     return vec3(0.0f);
 }
@@ -61,8 +63,8 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
                         jx = random_float(pixel, si, dim_pixel_x, params.seed);
                         jy = random_float(pixel, si, dim_pixel_y, params.seed);
                     }
-                    const Ray ray = camera_ray(frame, static_cast<float>(x) + jx,
-                                               static_cast<float>(y) + jy);
+                    const Ray ray =
+                        camera_ray(frame, static_cast<float>(x) + jx, static_cast<float>(y) + jy);
                     const vec3 value = sample_value(scene, accel, ray, params.aov, counts);
                     if (finite(value)) {
                         sum += value;

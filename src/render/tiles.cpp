@@ -14,7 +14,8 @@ std::vector<Tile> make_tiles(int width, int height, int tile_size) {
     tile_size = std::max(1, tile_size);
     for (int y = 0; y < height; y += tile_size)
         for (int x = 0; x < width; x += tile_size)
-            tiles.push_back({x, y, std::min(width, x + tile_size), std::min(height, y + tile_size)});
+            tiles.push_back(
+                {x, y, std::min(width, x + tile_size), std::min(height, y + tile_size)});
     return tiles;
 }
 

@@ -38,10 +38,14 @@ bool better(float t, uint32_t object, uint32_t prim, const Hit& hit) {
 
 float intersect_analytic(const Scene& scene, const Object& object, const Ray& ray_obj) {
     switch (object.kind) {
-        case ShapeKind::sphere: return intersect_sphere(scene.spheres[object.shape], ray_obj);
-        case ShapeKind::box: return intersect_box(scene.boxes[object.shape], ray_obj);
-        case ShapeKind::cylinder: return intersect_cylinder(scene.cylinders[object.shape], ray_obj);
-        case ShapeKind::plane: return intersect_plane(scene.planes[object.shape], ray_obj);
+        case ShapeKind::sphere:
+            return intersect_sphere(scene.spheres[object.shape], ray_obj);
+        case ShapeKind::box:
+            return intersect_box(scene.boxes[object.shape], ray_obj);
+        case ShapeKind::cylinder:
+            return intersect_cylinder(scene.cylinders[object.shape], ray_obj);
+        case ShapeKind::plane:
+            return intersect_plane(scene.planes[object.shape], ray_obj);
         case ShapeKind::triangle: {
             const Triangle& tri = scene.triangles[object.shape];
             float t, u, v;
@@ -49,7 +53,8 @@ float intersect_analytic(const Scene& scene, const Object& object, const Ray& ra
                                                 tri.p2, ray_obj.t_min, ray_obj.t_max, t, u, v);
             return hit ? t : infinity;
         }
-        case ShapeKind::mesh: break;
+        case ShapeKind::mesh:
+            break;
     }
     return infinity;
 }
@@ -75,8 +80,8 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const Ray& r
                     ++stats.prims_tested;
                     const TriangleVerts& tv = mesh.verts[k];
                     float t, u, v;
-                    if (intersect_triangle(wr, tv.a, tv.b, tv.c, ray.t_min, t_limit(ray, hit), t,
-                                           u, v) &&
+                    if (intersect_triangle(wr, tv.a, tv.b, tv.c, ray.t_min, t_limit(ray, hit), t, u,
+                                           v) &&
                         better(t, object, mesh.bvh.prim_ids[k], hit)) {
                         hit = {t, mesh.bvh.prim_ids[k], object, vec2(u, v)};
                     }
@@ -222,8 +227,8 @@ bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
             if (intersect_slab(sr, lo, hi, ray.t_min, ray.t_max, t_near)) {
                 if (node.is_leaf()) {
                     for (uint32_t k = node.index; k < node.index + node.count && !found; ++k)
-                        found = intersect_object_any(scene, accel, accel.top.prim_ids[k], ray,
-                                                     stats);
+                        found =
+                            intersect_object_any(scene, accel, accel.top.prim_ids[k], ray, stats);
                     if (found) break;
                 } else {
                     stack[top++] = node.index;
@@ -271,19 +276,28 @@ SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
     const vec3 p = r.org + hit.t * r.dir;
     LocalGeometry g;
     switch (object.kind) {
-        case ShapeKind::sphere: g = geometry_sphere(scene.spheres[object.shape], p); break;
-        case ShapeKind::box: g = geometry_box(scene.boxes[object.shape], p); break;
-        case ShapeKind::cylinder: g = geometry_cylinder(scene.cylinders[object.shape], p); break;
-        case ShapeKind::plane: g = geometry_plane(scene.planes[object.shape], p); break;
+        case ShapeKind::sphere:
+            g = geometry_sphere(scene.spheres[object.shape], p);
+            break;
+        case ShapeKind::box:
+            g = geometry_box(scene.boxes[object.shape], p);
+            break;
+        case ShapeKind::cylinder:
+            g = geometry_cylinder(scene.cylinders[object.shape], p);
+            break;
+        case ShapeKind::plane:
+            g = geometry_plane(scene.planes[object.shape], p);
+            break;
         case ShapeKind::triangle: {
             const Triangle& t = scene.triangles[object.shape];
             float tt, u = 0.0f, v = 0.0f;
-            intersect_triangle(make_watertight_ray(r), t.p0, t.p1, t.p2, -infinity, infinity, tt,
-                               u, v);
+            intersect_triangle(make_watertight_ray(r), t.p0, t.p1, t.p2, -infinity, infinity, tt, u,
+                               v);
             g = geometry_triangle(t.p0, t.p1, t.p2, u, v);
             break;
         }
-        case ShapeKind::mesh: break;
+        case ShapeKind::mesh:
+            break;
     }
     sp.uv = g.uv;
     if (object.has_transform) {

@@ -1,7 +1,7 @@
 // Tests of render/render_scalar.cpp: determinism, sampling, AOVs and shading on small scenes.
-#include <gtest/gtest.h>
-
 #include "render/render_scalar.h"
+
+#include <gtest/gtest.h>
 
 namespace raylane {
 namespace {

@@ -1,0 +1,772 @@
+// io: the JSON scene loader (load_scene.h; format: docs/scene-format.md). Parses with a SAX
+// builder that bounds the nesting depth and rejects duplicate keys, then reads the tree strictly.
+#include "io/load_scene.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+#include "io/load_mesh.h"
+#include "io/model_path.h"
+#include "scene/transform.h"
+
+namespace raylane {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// ---------------------------------------------------------------------------------------------
+// Message helpers
+
+/// `s` in double quotes, with quotes, backslashes and control characters escaped (one line).
+std::string json_quoted(std::string_view s) {
+    std::string out = "\"";
+    for (char ch : s) {
+        auto c = static_cast<unsigned char>(ch);
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += ch;
+        } else if (c < 0x20 || c == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", unsigned{c});
+            out += buf;
+        } else {
+            out += ch;
+        }
+    }
+    return out + "\"";
+}
+
+/// Bytes outside printable ASCII written as \xNN, so a message stays one printable line.
+std::string printable(std::string_view s) {
+    std::string out;
+    for (char ch : s) {
+        auto c = static_cast<unsigned char>(ch);
+        if (c < 0x20 || c >= 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", unsigned{c});
+            out += buf;
+        } else {
+            out += ch;
+        }
+    }
+    return out;
+}
+
+std::string format_number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+std::string member_path(const std::string& parent, std::string_view key) {
+    bool plain = !key.empty() && !(key[0] >= '0' && key[0] <= '9');
+    for (char c : key) {
+        plain = plain && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                          (c >= '0' && c <= '9') || c == '_');
+    }
+    return plain ? parent + "." + std::string(key) : parent + "[" + json_quoted(key) + "]";
+}
+
+std::string element_path(const std::string& parent, size_t index) {
+    return parent + "[" + std::to_string(index) + "]";
+}
+
+std::string describe_type(const Json& j) {
+    if (j.is_object()) return "an object";
+    if (j.is_array()) return "an array";
+    if (j.is_string()) return "a string";
+    if (j.is_boolean()) return "a boolean";
+    if (j.is_number()) return "a number";
+    return "null";
+}
+
+std::string join(const std::vector<std::string>& items, size_t max_items) {
+    std::string out;
+    for (size_t i = 0; i < items.size() && i < max_items; ++i) out += (i ? ", " : "") + items[i];
+    if (items.size() > max_items) out += ", ...";
+    return out.empty() ? "none" : out;
+}
+
+/// 1-based line and column of byte `index` of `text`.
+std::string line_column(std::string_view text, size_t index) {
+    index = std::min(index, text.size());
+    size_t line = 1, line_start = 0;
+    for (size_t i = 0; i < index; ++i) {
+        if (text[i] == '\n') {
+            ++line;
+            line_start = i + 1;
+        }
+    }
+    return std::to_string(line) + ":" + std::to_string(index - line_start + 1);
+}
+
+/// Byte index of the first bracket that opens level `limit + 1`, or npos. Strings are skipped
+/// with their escapes, so the count is exact for any text the JSON lexer accepts up to there.
+size_t find_depth_overflow(std::string_view text, int limit) {
+    int depth = 0;
+    bool in_string = false, escaped = false;
+    for (size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (in_string) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > limit) return i;
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return std::string_view::npos;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parsing: a SAX handler that builds the DOM (nlohmann's sax_parse is iterative, so the depth
+// limit below is what bounds the recursion of everything that later walks the tree).
+
+class DomBuilder {
+  public:
+    using number_integer_t = Json::number_integer_t;
+    using number_unsigned_t = Json::number_unsigned_t;
+    using number_float_t = Json::number_float_t;
+    using string_t = Json::string_t;
+    using binary_t = Json::binary_t;
+
+    Json root;
+    bool too_deep = false;
+    std::string duplicate_key_path;  ///< set when the parse stopped at a repeated key
+    bool syntax_error = false;
+    size_t error_byte = 0;
+    std::string error_message;
+
+    bool null() { return put(Json(nullptr)); }
+    bool boolean(bool v) { return put(Json(v)); }
+    bool number_integer(number_integer_t v) { return put(Json(v)); }
+    bool number_unsigned(number_unsigned_t v) { return put(Json(v)); }
+    bool number_float(number_float_t v, const string_t&) { return put(Json(v)); }
+    bool string(string_t& v) { return put(Json(std::move(v))); }
+    bool binary(binary_t&) { return false; }  // never produced by JSON text
+    bool start_object(size_t) { return open(Json::object()); }
+    bool start_array(size_t) { return open(Json::array()); }
+    bool end_object() { return close(); }
+    bool end_array() { return close(); }
+
+    bool key(string_t& k) {
+        Json& object = *stack_.back();
+        if (object.contains(k)) {
+            duplicate_key_path = member_path(current_path(), k);
+            return false;
+        }
+        pending_ = &object[k];
+        return true;
+    }
+
+    bool parse_error(size_t byte, const std::string&, const nlohmann::detail::exception& e) {
+        syntax_error = true;
+        error_byte = byte;
+        std::string what = e.what();
+        size_t at = what.find("syntax error");
+        if (at == std::string::npos) {
+            at = what.find("] ");
+            at = at == std::string::npos ? 0 : at + 2;
+        }
+        error_message = printable(what.substr(at));
+        return false;
+    }
+
+  private:
+    std::vector<Json*> stack_;  ///< open arrays and objects, outermost first
+    Json* pending_ = nullptr;   ///< slot of the last key read, in the innermost object
+    Json* last_ = nullptr;
+
+    bool put(Json&& v) {
+        if (stack_.empty()) {
+            root = std::move(v);
+            last_ = &root;
+        } else if (stack_.back()->is_array()) {
+            stack_.back()->push_back(std::move(v));
+            last_ = &stack_.back()->back();
+        } else {
+            *pending_ = std::move(v);
+            last_ = pending_;
+        }
+        return true;
+    }
+    bool open(Json&& v) {
+        if (stack_.size() >= size_t{max_scene_json_depth}) {
+            too_deep = true;
+            return false;
+        }
+        put(std::move(v));
+        stack_.push_back(last_);  // the parent does not grow while this child is open
+        return true;
+    }
+    bool close() {
+        stack_.pop_back();
+        return true;
+    }
+    std::string current_path() const {
+        std::string path = "$";
+        for (size_t i = 1; i < stack_.size(); ++i) {
+            const Json& parent = *stack_[i - 1];
+            path = parent.is_array() ? element_path(path, parent.size() - 1)
+                                     : member_path(path, std::prev(parent.end()).key());
+        }
+        return path;
+    }
+};
+
+Json parse_json(std::string_view text, const std::string& file) {
+    DomBuilder builder;
+    bool ok = Json::sax_parse(text.data(), text.data() + text.size(), &builder,
+                              nlohmann::json::input_format_t::json, true, false);
+    if (ok) return std::move(builder.root);
+    if (builder.too_deep) {
+        size_t at = find_depth_overflow(text, max_scene_json_depth);
+        throw InputError(file + ":" + line_column(text, at) + ": JSON nested deeper than " +
+                         std::to_string(max_scene_json_depth) + " levels");
+    }
+    if (!builder.duplicate_key_path.empty()) {
+        throw InputError(file + ": " + builder.duplicate_key_path + ": duplicate key");
+    }
+    size_t index = builder.error_byte > 0 ? builder.error_byte - 1 : 0;  // last byte read
+    throw InputError(file + ":" + line_column(text, index) + ": " +
+                     (builder.syntax_error ? builder.error_message : "malformed JSON"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading the tree
+
+/// A value in the tree and its JSON path ("$.objects[2].radius").
+struct Node {
+    const Json* j;
+    std::string path;
+};
+
+enum class Sign { any, non_negative, positive };
+
+class SceneReader {
+  public:
+    SceneReader(std::string file, std::string dir) : file_(std::move(file)), dir_(std::move(dir)) {}
+
+    Scene read(const Json& root) {
+        Node top{&root, "$"};
+        expect_keys(top, {"version", "description", "camera", "background", "materials", "objects",
+                          "lights"});
+        Scene scene;
+        scene.source = file_;
+        if (const Json* v = find(top, "version")) {
+            Node n{v, member_path("$", "version")};
+            int version = integer(n, 0, 1 << 30);
+            if (version != 1) {
+                fail(n, "unsupported version " + std::to_string(version) +
+                            " (this loader reads version 1)");
+            }
+        }
+        if (const Json* v = find(top, "description")) text(Node{v, "$.description"});
+        scene.camera = read_camera(child(top, "camera"));
+        if (const Json* v = find(top, "background")) {
+            scene.background = color(Node{v, "$.background"});
+        }
+        if (const Json* v = find(top, "materials")) read_materials(Node{v, "$.materials"}, scene);
+        if (const Json* v = find(top, "lights")) {
+            Node lights{v, "$.lights"};
+            expect(lights, lights.j->is_array(), "an array");
+            for (size_t i = 0; i < v->size(); ++i) {
+                scene.lights.push_back(read_light(Node{&(*v)[i], element_path(lights.path, i)}));
+            }
+        }
+        if (const Json* v = find(top, "objects")) {
+            Node objects{v, "$.objects"};
+            expect(objects, objects.j->is_array(), "an array");
+            for (size_t i = 0; i < v->size(); ++i) {
+                read_object(Node{&(*v)[i], element_path(objects.path, i)}, scene);
+            }
+        }
+        return scene;
+    }
+
+  private:
+    std::string file_;
+    std::string dir_;
+    std::map<std::string, Mesh> meshes_;  ///< loaded meshes by resolved path, before baking
+
+    [[noreturn]] void fail(const Node& n, const std::string& reason) const {
+        throw InputError(file_ + ": " + n.path + ": " + reason);
+    }
+    void expect(const Node& n, bool ok, const char* what) const {
+        if (!ok) fail(n, std::string("must be ") + what + ", got " + describe_type(*n.j));
+    }
+
+    /// `n` must be an object whose keys are all in `allowed`.
+    void expect_keys(const Node& n, std::initializer_list<std::string_view> allowed) const {
+        expect(n, n.j->is_object(), "an object");
+        for (auto it = n.j->begin(); it != n.j->end(); ++it) {
+            if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
+            std::vector<std::string> names(allowed.begin(), allowed.end());
+            fail(Node{&it.value(), member_path(n.path, it.key())},
+                 "unknown key (expected: " + join(names, names.size()) + ")");
+        }
+    }
+    static const Json* find(const Node& n, std::string_view key) {
+        auto it = n.j->find(std::string(key));
+        return it == n.j->end() ? nullptr : &*it;
+    }
+    Node child(const Node& n, std::string_view key) const {
+        const Json* v = find(n, key);
+        Node c{v, member_path(n.path, key)};
+        if (!v) fail(c, "missing (required)");
+        return c;
+    }
+
+    double number(const Node& n) const {
+        expect(n, n.j->is_number(), "a number");
+        double v = n.j->get<double>();
+        if (!std::isfinite(v)) fail(n, "must be finite");
+        if (std::abs(v) > double(FLT_MAX)) {
+            fail(n, format_number(v) + " is outside the float range");
+        }
+        return v;
+    }
+    /// A number with its sign checked, kept in double (rounded to float where it is stored).
+    double number(const Node& n, Sign sign) const {
+        double v = number(n);
+        if (sign == Sign::positive && !(v > 0.0)) fail(n, "must be > 0, got " + format_number(v));
+        if (sign == Sign::non_negative && v < 0.0) {
+            fail(n, "must be >= 0, got " + format_number(v));
+        }
+        return v;
+    }
+    float real(const Node& n, Sign sign = Sign::any) const {
+        auto v = float(number(n, sign));
+        if (sign == Sign::positive && !(v > 0.0f)) fail(n, "must be > 0 as a float");
+        return v;
+    }
+    int integer(const Node& n, int lo, int hi) const {
+        expect(n, n.j->is_number_integer(), "an integer");
+        std::string range = " an integer from " + std::to_string(lo) + " to " + std::to_string(hi);
+        if (n.j->is_number_unsigned()) {
+            auto v = n.j->get<uint64_t>();
+            if (v < uint64_t(std::max(lo, 0)) || v > uint64_t(hi)) {
+                fail(n, "must be" + range + ", got " + std::to_string(v));
+            }
+            return int(v);
+        }
+        auto v = n.j->get<int64_t>();
+        if (v < lo || v > hi) fail(n, "must be" + range + ", got " + std::to_string(v));
+        return int(v);
+    }
+    bool boolean(const Node& n) const {
+        expect(n, n.j->is_boolean(), "true or false");
+        return n.j->get<bool>();
+    }
+    std::string text(const Node& n) const {
+        expect(n, n.j->is_string(), "a string");
+        return n.j->get<std::string>();
+    }
+    /// Index of the string value in `choices`.
+    int choice(const Node& n, std::initializer_list<const char*> choices) const {
+        std::string s = text(n);
+        std::vector<std::string> names;
+        for (const char* c : choices) {
+            if (s == c) return int(names.size());
+            names.push_back(json_quoted(c));
+        }
+        fail(n, "must be one of " + join(names, names.size()) + ", got " + json_quoted(s));
+    }
+    glm::dvec3 dvec3(const Node& n, Sign sign = Sign::any) const {
+        expect(n, n.j->is_array() && n.j->size() == 3, "an array of 3 numbers");
+        glm::dvec3 v;
+        for (int i = 0; i < 3; ++i) {
+            v[i] = number(Node{&(*n.j)[size_t(i)], element_path(n.path, size_t(i))}, sign);
+        }
+        return v;
+    }
+    vec3 point(const Node& n) const { return vec3(dvec3(n)); }
+    vec3 color(const Node& n) const { return vec3(dvec3(n, Sign::non_negative)); }
+    /// A direction, normalised in double; the zero vector is an error.
+    vec3 direction(const Node& n) const {
+        glm::dvec3 v = dvec3(n);
+        double len = glm::length(v);
+        if (!(len > 0.0)) fail(n, "must not be the zero vector");
+        return vec3(v / len);
+    }
+
+    Camera read_camera(const Node& n) const {
+        expect_keys(n, {"position", "look_at", "up", "fov_deg", "fov_axis", "resolution", "spp"});
+        Camera c;
+        c.position = point(child(n, "position"));
+        Node look = child(n, "look_at");
+        c.look_at = point(look);
+        if (const Json* v = find(n, "up")) c.up = direction(Node{v, member_path(n.path, "up")});
+        Node fov = child(n, "fov_deg");
+        c.fov_deg = real(fov);
+        if (!(c.fov_deg > 0.0f && c.fov_deg < 180.0f)) {
+            fail(fov, "must be between 0 and 180 (exclusive), got " + format_number(c.fov_deg));
+        }
+        if (const Json* v = find(n, "fov_axis")) {
+            int axis = choice(Node{v, member_path(n.path, "fov_axis")}, {"vertical", "horizontal"});
+            c.fov_axis = axis == 0 ? FovAxis::vertical : FovAxis::horizontal;
+        }
+        if (const Json* v = find(n, "resolution")) {
+            Node res{v, member_path(n.path, "resolution")};
+            expect(res, v->is_array() && v->size() == 2, "an array [width, height]");
+            c.width = integer(Node{&(*v)[0], element_path(res.path, 0)}, 1, 32768);
+            c.height = integer(Node{&(*v)[1], element_path(res.path, 1)}, 1, 32768);
+        }
+        if (const Json* v = find(n, "spp")) {
+            c.spp = integer(Node{v, member_path(n.path, "spp")}, 1, 1 << 20);
+        }
+        glm::dvec3 view = glm::dvec3(c.look_at) - glm::dvec3(c.position);
+        if (!(glm::length(view) > 0.0)) fail(look, "must differ from the camera position");
+        glm::dvec3 side = glm::cross(glm::normalize(view), glm::normalize(glm::dvec3(c.up)));
+        if (!(glm::length(side) > 1e-6)) {
+            fail(find(n, "up") ? child(n, "up") : look, "the view direction is parallel to up");
+        }
+        return c;
+    }
+
+    void read_materials(const Node& n, Scene& scene) const {
+        expect(n, n.j->is_object(), "an object");
+        for (auto it = n.j->begin(); it != n.j->end(); ++it) {
+            Node m{&it.value(), member_path(n.path, it.key())};
+            if (it.key().empty()) fail(m, "a material name must not be empty");
+            expect_keys(m, {"c_d", "k_d", "k_a", "c_s", "k_s", "exponent"});
+            Material mat;
+            mat.name = it.key();
+            if (const Json* v = find(m, "c_d")) {
+                mat.c_d = color(Node{v, member_path(m.path, "c_d")});
+            }
+            if (const Json* v = find(m, "k_d")) {
+                mat.k_d = real(Node{v, member_path(m.path, "k_d")}, Sign::non_negative);
+            }
+            if (const Json* v = find(m, "k_a")) {
+                mat.k_a = real(Node{v, member_path(m.path, "k_a")}, Sign::non_negative);
+            }
+            if (const Json* v = find(m, "c_s")) {
+                mat.c_s = color(Node{v, member_path(m.path, "c_s")});
+            }
+            if (const Json* v = find(m, "k_s")) {
+                mat.k_s = real(Node{v, member_path(m.path, "k_s")}, Sign::non_negative);
+            }
+            if (const Json* v = find(m, "exponent")) {
+                mat.exponent = real(Node{v, member_path(m.path, "exponent")}, Sign::non_negative);
+            }
+            scene.materials.push_back(std::move(mat));
+        }
+    }
+
+    Light read_light(const Node& n) const {
+        expect(n, n.j->is_object(), "an object");
+        int type = choice(child(n, "type"), {"point", "directional"});
+        Light light;
+        if (type == 0) {
+            expect_keys(n, {"type", "position", "color", "intensity", "shadows"});
+            light.kind = LightKind::point;
+            light.position = point(child(n, "position"));
+        } else {
+            expect_keys(n, {"type", "direction", "color", "intensity", "shadows"});
+            light.kind = LightKind::directional;
+            light.direction = direction(child(n, "direction"));
+        }
+        if (const Json* v = find(n, "color")) {
+            light.color = color(Node{v, member_path(n.path, "color")});
+        }
+        if (const Json* v = find(n, "intensity")) {
+            light.intensity = real(Node{v, member_path(n.path, "intensity")}, Sign::non_negative);
+        }
+        if (const Json* v = find(n, "shadows")) {
+            light.shadows = boolean(Node{v, member_path(n.path, "shadows")});
+        }
+        return light;
+    }
+
+    Transform read_transform(const Node& n) const {
+        expect_keys(n, {"translate", "rotate", "rotate_deg", "scale"});
+        Transform t;
+        if (const Json* v = find(n, "translate")) {
+            t.translate = dvec3(Node{v, member_path(n.path, "translate")});
+        }
+        const Json* rotate = find(n, "rotate");
+        const Json* rotate_deg = find(n, "rotate_deg");
+        if (rotate && rotate_deg) {
+            fail(child(n, "rotate_deg"), "give either rotate or rotate_deg, not both");
+        }
+        if (rotate) {
+            Node list{rotate, member_path(n.path, "rotate")};
+            expect(list, rotate->is_array(), "an array of {\"axis\", \"deg\"} rotations");
+            // Written as a product, like T * R * S: the last rotation is applied first.
+            for (size_t i = 0; i < rotate->size(); ++i) {
+                Node r{&(*rotate)[i], element_path(list.path, i)};
+                expect_keys(r, {"axis", "deg"});
+                int axis = choice(child(r, "axis"), {"x", "y", "z"});
+                t.rotate = t.rotate * make_rotation(axis, number(child(r, "deg")));
+            }
+        }
+        if (rotate_deg) {
+            t.rotate =
+                make_rotation_xyz(dvec3(Node{rotate_deg, member_path(n.path, "rotate_deg")}));
+        }
+        if (const Json* v = find(n, "scale")) {
+            Node s{v, member_path(n.path, "scale")};
+            if (v->is_number()) {
+                t.scale = glm::dvec3(number(s));
+            } else {
+                expect(s, v->is_array() && v->size() == 3, "a number or an array of 3 numbers");
+                t.scale = dvec3(s);
+            }
+            if (t.scale.x == 0.0 || t.scale.y == 0.0 || t.scale.z == 0.0) {
+                fail(s, "must not be zero (the transform would not be invertible)");
+            }
+        }
+        return t;
+    }
+
+    uint32_t material_index(const Node& object, Scene& scene) const {
+        std::string name = "default";
+        const Json* v = find(object, "material");
+        if (v) name = text(Node{v, member_path(object.path, "material")});
+        for (size_t i = 0; i < scene.materials.size(); ++i) {
+            if (scene.materials[i].name == name) return uint32_t(i);
+        }
+        if (v) {
+            std::vector<std::string> known;
+            for (const Material& m : scene.materials) known.push_back(m.name);
+            fail(Node{v, member_path(object.path, "material")},
+                 "no material named " + json_quoted(name) + " (known: " + join(known, 20) + ")");
+        }
+        Material fallback;  // an object without "material" gets scene.h's defaults
+        fallback.name = name;
+        scene.materials.push_back(fallback);
+        return uint32_t(scene.materials.size() - 1);
+    }
+
+    /// The "fit" normalisation of a mesh with the given bounds (see transform.h, make_fit).
+    glm::dmat4 read_fit(const Node& n, const Aabb& bounds) const {
+        expect_keys(n, {"size", "axis", "scale", "offset"});
+        const Json* size = find(n, "size");
+        const Json* scale = find(n, "scale");
+        if (size && scale) fail(child(n, "scale"), "give either size or scale, not both");
+        if (!size && !scale) fail(n, "needs \"size\" or \"scale\"");
+        double s = 0.0;
+        if (scale) {
+            if (find(n, "axis")) fail(child(n, "axis"), "only goes with \"size\"");
+            s = number(child(n, "scale"), Sign::positive);
+        } else {
+            int axis = bounds.empty() ? 0 : bounds.longest_axis();
+            if (const Json* v = find(n, "axis")) {
+                int a = choice(Node{v, member_path(n.path, "axis")}, {"x", "y", "z", "longest"});
+                if (a < 3) axis = a;
+            }
+            double extent = bounds.empty() ? 0.0 : double(bounds.extent()[axis]);
+            if (!(extent > 0.0)) {
+                fail(n, std::string("the mesh has no extent along ") + "xyz"[axis] + " to fit");
+            }
+            s = number(child(n, "size"), Sign::positive) / extent;
+        }
+        glm::dvec3 offset(0.0);
+        if (const Json* v = find(n, "offset")) {
+            offset = dvec3(Node{v, member_path(n.path, "offset")});
+        }
+        return make_fit(bounds, s, offset);
+    }
+
+    void read_object(const Node& n, Scene& scene) {
+        expect(n, n.j->is_object(), "an object");
+        constexpr ShapeKind kinds[] = {ShapeKind::sphere, ShapeKind::box,      ShapeKind::cylinder,
+                                       ShapeKind::plane,  ShapeKind::triangle, ShapeKind::mesh};
+        Object object;
+        object.kind = kinds[choice(child(n, "shape"),
+                                   {"sphere", "box", "cylinder", "plane", "triangle", "mesh"})];
+        switch (object.kind) {
+            case ShapeKind::sphere:
+                expect_keys(n, {"shape", "material", "transform", "center", "radius"});
+                break;
+            case ShapeKind::box:
+                expect_keys(n, {"shape", "material", "transform", "min", "max"});
+                break;
+            case ShapeKind::cylinder:
+                expect_keys(n, {"shape", "material", "transform", "radius", "height"});
+                break;
+            case ShapeKind::plane:
+                expect_keys(n, {"shape", "material", "transform", "point", "normal"});
+                break;
+            case ShapeKind::triangle:
+                expect_keys(n, {"shape", "material", "transform", "vertices"});
+                break;
+            case ShapeKind::mesh:
+                expect_keys(n, {"shape", "material", "transform", "file", "fit"});
+                break;
+        }
+        object.material = material_index(n, scene);
+        Transform t;
+        if (const Json* v = find(n, "transform")) {
+            t = read_transform(Node{v, member_path(n.path, "transform")});
+        }
+
+        switch (object.kind) {
+            case ShapeKind::sphere: {
+                Sphere s;
+                if (const Json* v = find(n, "center")) {
+                    s.center = point(Node{v, member_path(n.path, "center")});
+                }
+                s.radius = real(child(n, "radius"), Sign::positive);
+                object.shape = uint32_t(scene.spheres.size());
+                scene.spheres.push_back(s);
+                break;
+            }
+            case ShapeKind::box: {
+                Box b;
+                Node hi = child(n, "max");
+                b.lo = point(child(n, "min"));
+                b.hi = point(hi);
+                if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) {
+                    fail(hi, "must be >= min in every component");
+                }
+                object.shape = uint32_t(scene.boxes.size());
+                scene.boxes.push_back(b);
+                break;
+            }
+            case ShapeKind::cylinder: {
+                Cylinder c;
+                c.radius = real(child(n, "radius"), Sign::positive);
+                c.height = real(child(n, "height"), Sign::positive);
+                object.shape = uint32_t(scene.cylinders.size());
+                scene.cylinders.push_back(c);
+                break;
+            }
+            case ShapeKind::plane: {
+                Plane p;
+                if (const Json* v = find(n, "point")) {
+                    p.point = point(Node{v, member_path(n.path, "point")});
+                }
+                p.normal = direction(child(n, "normal"));
+                object.shape = uint32_t(scene.planes.size());
+                scene.planes.push_back(p);
+                break;
+            }
+            case ShapeKind::triangle: {
+                Node verts = child(n, "vertices");
+                expect(verts, verts.j->is_array() && verts.j->size() == 3, "an array of 3 points");
+                Triangle tri;
+                tri.p0 = point(Node{&(*verts.j)[0], element_path(verts.path, 0)});
+                tri.p1 = point(Node{&(*verts.j)[1], element_path(verts.path, 1)});
+                tri.p2 = point(Node{&(*verts.j)[2], element_path(verts.path, 2)});
+                glm::dvec3 e1 = glm::dvec3(tri.p1) - glm::dvec3(tri.p0);
+                glm::dvec3 e2 = glm::dvec3(tri.p2) - glm::dvec3(tri.p0);
+                if (glm::cross(e1, e2) == glm::dvec3(0.0)) {
+                    fail(verts, "the triangle has zero area");
+                }
+                object.shape = uint32_t(scene.triangles.size());
+                scene.triangles.push_back(tri);
+                break;
+            }
+            case ShapeKind::mesh:
+                // Baked into world space: the object keeps the identity transform.
+                read_mesh(n, t, scene);
+                object.shape = uint32_t(scene.meshes.size() - 1);
+                scene.objects.push_back(object);
+                return;
+        }
+        set_transform(object, t);
+        if (!all_finite(object.world_from_object) || !all_finite(object.object_from_world)) {
+            fail(find(n, "transform") ? child(n, "transform") : n,
+                 "the matrix overflows the float range");
+        }
+        scene.objects.push_back(object);
+    }
+
+    /// Loads (once per file), fits and bakes a mesh into world space; appends it to scene.meshes.
+    void read_mesh(const Node& n, const Transform& t, Scene& scene) {
+        Node file = child(n, "file");
+        std::string name = text(file);
+        std::string resolved;
+        try {
+            resolved = find_model(name, dir_);
+        } catch (const InputError& e) {
+            fail(file, e.what());
+        }
+        auto it = meshes_.find(resolved);
+        if (it == meshes_.end()) it = meshes_.emplace(resolved, load_mesh(resolved)).first;
+        Mesh mesh = it->second;
+        if (mesh.name.empty()) mesh.name = name;
+        glm::dmat4 world_from_object = make_world_from_object(t);
+        if (const Json* v = find(n, "fit")) {
+            world_from_object = world_from_object *
+                                read_fit(Node{v, member_path(n.path, "fit")}, mesh_bounds(mesh));
+        }
+        bake_transform(mesh, world_from_object);
+        for (vec3 p : mesh.positions) {
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+                fail(n, "the transform moves mesh positions outside the float range");
+            }
+        }
+        scene.meshes.push_back(std::move(mesh));
+    }
+
+    static bool all_finite(const mat4& m) {
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) {
+                if (!std::isfinite(m[c][r])) return false;
+            }
+        }
+        return true;
+    }
+};
+
+}  // namespace
+
+Scene load_scene_from_string(std::string_view json, const std::string& path_for_errors) {
+    Json root = parse_json(json, path_for_errors);
+    std::string dir = std::filesystem::path(path_for_errors).parent_path().string();
+    if (dir.empty()) dir = ".";
+    return SceneReader(path_for_errors, dir).read(root);
+}
+
+Scene load_scene(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        throw InputError(path + ": cannot read: " + std::generic_category().message(EISDIR));
+    }
+    errno = 0;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw InputError(
+            path + ": cannot read: " + std::generic_category().message(errno ? errno : ENOENT));
+    }
+    // Read in blocks so that a huge file or an endless stream stops at the size limit.
+    std::string text;
+    std::vector<char> block(size_t{1} << 16);
+    while (in.read(block.data(), std::streamsize(block.size())) || in.gcount() > 0) {
+        text.append(block.data(), size_t(in.gcount()));
+        if (text.size() > max_scene_file_bytes) {
+            throw InputError(path + ": scene file larger than " +
+                             std::to_string(max_scene_file_bytes >> 20) + " MiB");
+        }
+    }
+    if (in.bad()) throw InputError(path + ": cannot read: I/O error");
+    return load_scene_from_string(text, path);
+}
+
+}  // namespace raylane
