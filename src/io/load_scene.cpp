@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/model_path.h"
+#include "scene/mesh_normals.h"
 #include "scene/transform.h"
 
 namespace raylane {
@@ -616,7 +617,7 @@ class SceneReader {
                 expect_keys(n, {"shape", "material", "transform", "vertices"});
                 break;
             case ShapeKind::mesh:
-                expect_keys(n, {"shape", "material", "transform", "file", "fit"});
+                expect_keys(n, {"shape", "material", "transform", "file", "fit", "normals"});
                 break;
         }
         object.material = material_index(n, scene);
@@ -711,6 +712,15 @@ class SceneReader {
         if (it == meshes_.end()) it = meshes_.emplace(resolved, load_mesh(resolved)).first;
         Mesh mesh = it->second;
         if (mesh.name.empty()) mesh.name = name;
+        // normals: "auto" (the file's, else smooth), "file", "smooth" or "flat"
+        const char* modes[] = {"auto", "file", "smooth", "flat"};
+        const int mode = find(n, "normals")
+                             ? choice(child(n, "normals"), {modes[0], modes[1], modes[2], modes[3]})
+                             : 0;
+        if (mode == 1 && mesh.normal_tris.empty())
+            fail(child(n, "normals"), "the mesh file has no normals");
+        if (mode == 2 || (mode == 0 && mesh.normal_tris.empty())) compute_smooth_normals(mesh);
+        if (mode == 3) drop_normals(mesh);
         glm::dmat4 world_from_object = make_world_from_object(t);
         if (const Json* v = find(n, "fit")) {
             world_from_object = world_from_object *
