@@ -1,6 +1,8 @@
 // Tests of scene/mesh_normals.cpp.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "scene/mesh_normals.h"
 
 namespace raylane {
@@ -35,8 +37,9 @@ TEST(MeshNormals, AreaWeightingFavoursTheLargerFace) {
     m.tris = {{0, 1, 2}, {0, 3, 4}};
     compute_smooth_normals(m);
     const vec3 n = m.normals[0];
-    EXPECT_GT(n.z, 0.99f);  // the 50-unit face (normal +z) outweighs the 0.5-unit face (+y)
-    EXPECT_GT(n.y, 0.0f);
+    // cross products: (0, 0, 100) for the large face, (0, -1, 0) for the small one
+    EXPECT_NEAR(n.z, 100.0f / std::sqrt(10001.0f), 1e-6f);
+    EXPECT_NEAR(n.y, -1.0f / std::sqrt(10001.0f), 1e-6f);
 }
 
 TEST(MeshNormals, DegenerateNeighbourhoodGivesZeroNotNaN) {
