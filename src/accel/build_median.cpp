@@ -13,16 +13,63 @@ struct PrimRef {
     uint32_t id;
 };
 
+/// Moves the k-th smallest (by centroid on `axis`) to a[k], smaller ones before it and larger
+/// ones after it: a quickselect (Hoare, 1961) with a median-of-three pivot. Each partition is
+/// out of place and branch-free (every element is written to both ends of `scratch`, one cursor
+/// advances), so neither mispredicted branches nor store-to-load chains slow it down.
 template <int axis>
-void partition_at_median(PrimRef* begin, PrimRef* mid, PrimRef* end) {
-    std::nth_element(begin, mid, end, [](const PrimRef& a, const PrimRef& b) {
-        return a.centroid2[axis] < b.centroid2[axis];
-    });
+void select_kth(PrimRef* a, size_t n, size_t k, PrimRef* scratch) {
+    size_t lo = 0, hi = n;
+    while (hi - lo > 16) {
+        const float x = a[lo].centroid2[axis], y = a[lo + (hi - lo) / 2].centroid2[axis];
+        const float z = a[hi - 1].centroid2[axis];
+        const float pivot = std::max(std::min(x, y), std::min(std::max(x, y), z));
+        // partition: [lo, j) < pivot <= [j, hi)
+        size_t left = 0, right = hi - lo - 1;
+        for (size_t i = lo; i < hi; ++i) {
+            const PrimRef v = a[i];
+            const bool less = v.centroid2[axis] < pivot;
+            scratch[left] = v;
+            scratch[right] = v;
+            left += less;
+            right -= !less;
+        }
+        std::copy(scratch, scratch + (hi - lo), a + lo);
+        size_t j = lo + left;
+        if (j == lo) {
+            // the pivot is the minimum: gather the elements equal to it at the front
+            left = 0;
+            right = hi - lo - 1;
+            for (size_t i = lo; i < hi; ++i) {
+                const PrimRef v = a[i];
+                const bool equal = v.centroid2[axis] == pivot;
+                scratch[left] = v;
+                scratch[right] = v;
+                left += equal;
+                right -= !equal;
+            }
+            std::copy(scratch, scratch + (hi - lo), a + lo);
+            j = lo + left;
+            if (k < j) return;  // a[k] equals the pivot, which is the k-th smallest
+        }
+        if (k < j)
+            hi = j;
+        else
+            lo = j;
+    }
+    // small ranges: insertion sort
+    for (size_t i = lo + 1; i < hi; ++i) {
+        const PrimRef v = a[i];
+        size_t j = i;
+        for (; j > lo && a[j - 1].centroid2[axis] > v.centroid2[axis]; --j) a[j] = a[j - 1];
+        a[j] = v;
+    }
 }
 
 struct Builder {
     std::span<const Aabb> prim_bounds;
     std::vector<PrimRef>& refs;
+    std::vector<PrimRef>& scratch;
     std::vector<BvhNode>& nodes;
     uint32_t max_leaf;
 
@@ -50,7 +97,8 @@ struct Builder {
             node.axis = 0;
             return bounds;
         }
-        // split: object median along the longest axis of the centroid bounds
+        // split: object median along the longest axis of the centroid bounds (the median element at
+        // mid, smaller centroids before it, larger after)
         vec3 c_lo(infinity), c_hi(-infinity);
         for (uint32_t i = begin; i < end; ++i) {
             const vec3 c(refs[i].centroid2[0], refs[i].centroid2[1], refs[i].centroid2[2]);
@@ -59,10 +107,10 @@ struct Builder {
         }
         const int axis = Aabb{c_lo, c_hi}.longest_axis();
         const uint32_t mid = begin + count / 2;
-        PrimRef* base = refs.data();
-        if (axis == 0) partition_at_median<0>(base + begin, base + mid, base + end);
-        if (axis == 1) partition_at_median<1>(base + begin, base + mid, base + end);
-        if (axis == 2) partition_at_median<2>(base + begin, base + mid, base + end);
+        PrimRef* a = refs.data() + begin;
+        if (axis == 0) select_kth<0>(a, count, count / 2, scratch.data());
+        if (axis == 1) select_kth<1>(a, count, count / 2, scratch.data());
+        if (axis == 2) select_kth<2>(a, count, count / 2, scratch.data());
         bounds.grow(build(begin, mid));  // the first child follows its parent
         const uint32_t second = static_cast<uint32_t>(nodes.size());
         bounds.grow(build(mid, end));
@@ -89,7 +137,9 @@ Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& param
     // Leaves hold at least max_leaf / 2 primitives (halving a range > max_leaf), so fewer than
     // 4n / max_leaf + 1 nodes are made.
     bvh.nodes.reserve(4 * prim_bounds.size() / max_leaf + 1);
-    Builder{prim_bounds, refs, bvh.nodes, max_leaf}.build(0, static_cast<uint32_t>(refs.size()));
+    std::vector<PrimRef> scratch(refs.size());
+    Builder{prim_bounds, refs, scratch, bvh.nodes, max_leaf}.build(
+        0, static_cast<uint32_t>(refs.size()));
     bvh.prim_ids.resize(refs.size());
     for (size_t i = 0; i < refs.size(); ++i) bvh.prim_ids[i] = refs[i].id;
     return bvh;
