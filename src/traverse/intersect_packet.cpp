@@ -1,0 +1,355 @@
+// traverse: packet two-level BVH traversal. Mirrors intersect_scalar.cpp: the same steps, W
+// lanes at a time, each lane with its own active flag and interval.
+#include "traverse/intersect_packet.h"
+
+#include <cmath>
+
+#include "traverse/box_scalar.h"
+#include "traverse/cylinder_scalar.h"
+#include "traverse/plane_scalar.h"
+#include "traverse/slab_packet.h"
+#include "traverse/sphere_scalar.h"
+#include "traverse/triangle_packet.h"
+
+namespace raylane {
+
+template <int W>
+vfloat<W> next_float_up(const vfloat<W>& x) {
+    if constexpr (W == 1) {
+        return std::nextafter(x, infinity);
+    } else {
+        vfloat<W> out = x;
+        for (int i = 0; i < W; ++i) set(out, i, std::nextafter(get(x, i), infinity));
+        return out;
+    }
+}
+
+namespace {
+
+constexpr int stack_size = 64;
+
+/// The rays moved into an object's space; t is unchanged. Same products and sums as glm's
+/// mat4 * vec4 on the scalar path: (c0 x + c1 y) + (c2 z + c3 w).
+template <int W>
+RayPacket<W> to_object_space(const Object& object, const RayPacket<W>& rays) {
+    if (!object.has_transform) return rays;
+    const mat4& m = object.object_from_world;
+    RayPacket<W> r = rays;
+    auto row = [&](int k, const Vec3<W>& p, float w) {
+        return (vfloat<W>(m[0][k]) * p.x + vfloat<W>(m[1][k]) * p.y) +
+               (vfloat<W>(m[2][k]) * p.z + vfloat<W>(m[3][k] * w));
+    };
+    r.org = {row(0, rays.org, 1.0f), row(1, rays.org, 1.0f), row(2, rays.org, 1.0f)};
+    r.dir = {row(0, rays.dir, 0.0f), row(1, rays.dir, 0.0f), row(2, rays.dir, 0.0f)};
+    return r;
+}
+
+/// Upper end of the open interval a candidate must beat; ties with the current hit pass.
+template <int W>
+vfloat<W> t_limit(const RayPacket<W>& rays, const HitPacket<W>& hit) {
+    const vmask<W> has_hit = hit.t < vfloat<W>(infinity);
+    if (none(has_hit)) return rays.t_max;
+    return select(has_hit, next_float_up<W>(hit.t), rays.t_max);
+}
+
+/// Lanes of `cand` whose candidate (t, object, prim) beats the current hit. Ties in t are rare
+/// and decided lane by lane.
+template <int W>
+vmask<W> better(const vfloat<W>& t, uint32_t object, uint32_t prim, const HitPacket<W>& hit,
+                vmask<W> cand) {
+    vmask<W> win = mask_and(cand, t < hit.t);
+    const vmask<W> tie = mask_and(cand, t == hit.t);
+    if (any(tie)) {
+        uint32_t win_bits = bits(win);
+        for_each_active(tie, [&](int i) {
+            const uint32_t o = static_cast<uint32_t>(get(hit.object, i));
+            const uint32_t p = static_cast<uint32_t>(get(hit.prim, i));
+            if (object < o || (object == o && prim < p)) win_bits |= 1u << i;
+        });
+        win = mask_from_bits<W>(win_bits);
+    }
+    return win;
+}
+
+template <int W>
+void record(HitPacket<W>& hit, vmask<W> win, const vfloat<W>& t, uint32_t object, uint32_t prim,
+            const vfloat<W>& u, const vfloat<W>& v) {
+    hit.t = select(win, t, hit.t);
+    hit.u = select(win, u, hit.u);
+    hit.v = select(win, v, hit.v);
+    hit.object = select(win, vint<W>(static_cast<int32_t>(object)), hit.object);
+    hit.prim = select(win, vint<W>(static_cast<int32_t>(prim)), hit.prim);
+}
+
+/// Analytic shapes, lane by lane through the scalar shape tests for now.
+// TODO(#3): packet twins of the sphere, box, cylinder and plane tests.
+template <int W>
+vfloat<W> intersect_analytic(const Scene& scene, const Object& object, const RayPacket<W>& rays,
+                             vmask<W> active) {
+    vfloat<W> t(infinity);
+    for_each_active(active, [&](int i) {
+        const Ray r = get_ray(rays, i);
+        float ti = infinity;
+        switch (object.kind) {
+            case ShapeKind::sphere:
+                ti = intersect_sphere(scene.spheres[object.shape], r);
+                break;
+            case ShapeKind::box:
+                ti = intersect_box(scene.boxes[object.shape], r);
+                break;
+            case ShapeKind::cylinder:
+                ti = intersect_cylinder(scene.cylinders[object.shape], r);
+                break;
+            case ShapeKind::plane:
+                ti = intersect_plane(scene.planes[object.shape], r);
+                break;
+            case ShapeKind::triangle: {
+                const Triangle& tri = scene.triangles[object.shape];
+                float tt, u, v;
+                if (intersect_triangle(make_watertight_ray(r), tri.p0, tri.p1, tri.p2, r.t_min,
+                                       r.t_max, tt, u, v))
+                    ti = tt;
+                break;
+            }
+            case ShapeKind::mesh:
+                break;
+        }
+        set(t, i, ti);
+    });
+    return t;
+}
+
+// mesh: closest hit over one mesh's BVH, near child first by the first active lane's signs.
+template <int W>
+void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPacket<W>& rays,
+                            vmask<W> active, HitPacket<W>& hit, vint<W>* nodes_visited) {
+    if (mesh.bvh.nodes.empty()) return;
+    const WatertightPacket<W> wr = make_watertight_ray(rays, active);
+    const SlabPacket<W> sr = make_slab_ray(rays);
+    const int lane = first_active(active);
+    const int dir_neg[3] = {get(rays.dir.x, lane) < 0.0f, get(rays.dir.y, lane) < 0.0f,
+                            get(rays.dir.z, lane) < 0.0f};
+    uint32_t stack[stack_size];
+    int top = 0;
+    uint32_t node_index = 0;
+    vfloat<W> limit = t_limit(rays, hit);
+    for (;;) {
+        const BvhNode& node = mesh.bvh.nodes[node_index];
+        if (nodes_visited)
+            *nodes_visited = select(active, *nodes_visited + vint<W>(1), *nodes_visited);
+        vfloat<W> t_near;
+        const vec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
+        const vmask<W> m = intersect_slab(sr, lo, hi, rays.t_min, limit, t_near, active);
+        if (any(m)) {
+            if (node.is_leaf()) {
+                for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+                    const TriangleVerts& tv = mesh.verts[k];
+                    vfloat<W> t(infinity), u(0.0f), v(0.0f);
+                    const vmask<W> h =
+                        intersect_triangle(wr, tv.a, tv.b, tv.c, rays.t_min, limit, t, u, v, m);
+                    if (any(h)) {
+                        const uint32_t prim = mesh.bvh.prim_ids[k];
+                        const vmask<W> win = better(t, object, prim, hit, h);
+                        record(hit, win, t, object, prim, u, v);
+                        limit = t_limit(rays, hit);
+                    }
+                }
+            } else if (dir_neg[node.axis]) {
+                stack[top++] = node_index + 1;
+                node_index = node.index;
+                continue;
+            } else {
+                stack[top++] = node.index;
+                node_index = node_index + 1;
+                continue;
+            }
+        }
+        if (top == 0) break;
+        node_index = stack[--top];
+    }
+}
+
+template <int W>
+vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vmask<W> active) {
+    if (mesh.bvh.nodes.empty()) return mask_and(active, mask_not(active));
+    const WatertightPacket<W> wr = make_watertight_ray(rays, active);
+    const SlabPacket<W> sr = make_slab_ray(rays);
+    vmask<W> found = mask_and(active, mask_not(active));
+    vmask<W> open = active;  // lanes still looking
+    uint32_t stack[stack_size];
+    int top = 0;
+    uint32_t node_index = 0;
+    for (;;) {
+        const BvhNode& node = mesh.bvh.nodes[node_index];
+        vfloat<W> t_near;
+        const vec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
+        const vmask<W> m = intersect_slab(sr, lo, hi, rays.t_min, rays.t_max, t_near, open);
+        if (any(m)) {
+            if (node.is_leaf()) {
+                for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+                    const TriangleVerts& tv = mesh.verts[k];
+                    vfloat<W> t(infinity), u(0.0f), v(0.0f);
+                    const vmask<W> h =
+                        intersect_triangle(wr, tv.a, tv.b, tv.c, rays.t_min, rays.t_max, t, u, v,
+                                           mask_andnot(m, found));
+                    found = mask_or(found, h);
+                }
+                open = mask_andnot(active, found);
+                if (none(open)) return found;
+            } else {
+                stack[top++] = node.index;
+                node_index = node_index + 1;
+                continue;
+            }
+        }
+        if (top == 0) break;
+        node_index = stack[--top];
+    }
+    return found;
+}
+
+template <int W>
+void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t object_index,
+                              const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
+                              vint<W>* nodes_visited) {
+    const Object& object = scene.objects[object_index];
+    if (object.kind == ShapeKind::mesh) {
+        intersect_mesh_closest(accel.meshes[object.shape], object_index, rays, active, hit,
+                               nodes_visited);
+        return;
+    }
+    RayPacket<W> r = to_object_space(object, rays);
+    r.t_max = t_limit(rays, hit);
+    const vfloat<W> t = intersect_analytic(scene, object, r, active);
+    const vmask<W> cand = mask_and(active, t < r.t_max);
+    const vmask<W> win = better(t, object_index, 0, hit, cand);
+    record(hit, win, t, object_index, 0, vfloat<W>(0.0f), vfloat<W>(0.0f));
+}
+
+template <int W>
+vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t object_index,
+                              const RayPacket<W>& rays, vmask<W> active) {
+    const Object& object = scene.objects[object_index];
+    if (object.kind == ShapeKind::mesh)
+        return intersect_mesh_any(accel.meshes[object.shape], rays, active);
+    const vfloat<W> t = intersect_analytic(scene, object, to_object_space(object, rays), active);
+    return mask_and(active, t < rays.t_max);
+}
+
+}  // namespace
+
+template <int W>
+HitPacket<W> intersect_closest(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
+                               vmask<W> active, vint<W>* nodes_visited) {
+    HitPacket<W> hit;
+    if (none(active)) return hit;
+    for (uint32_t object : accel.unbounded)
+        intersect_object_closest(scene, accel, object, rays, active, hit, nodes_visited);
+    if (!accel.top.nodes.empty()) {
+        const SlabPacket<W> sr = make_slab_ray(rays);
+        const int lane = first_active(active);
+        const int dir_neg[3] = {get(rays.dir.x, lane) < 0.0f, get(rays.dir.y, lane) < 0.0f,
+                                get(rays.dir.z, lane) < 0.0f};
+        uint32_t stack[stack_size];
+        int top = 0;
+        uint32_t node_index = 0;
+        for (;;) {
+            const BvhNode& node = accel.top.nodes[node_index];
+            if (nodes_visited)
+                *nodes_visited = select(active, *nodes_visited + vint<W>(1), *nodes_visited);
+            vfloat<W> t_near;
+            const vec3 lo(node.lo[0], node.lo[1], node.lo[2]);
+            const vec3 hi(node.hi[0], node.hi[1], node.hi[2]);
+            const vmask<W> m =
+                intersect_slab(sr, lo, hi, rays.t_min, t_limit(rays, hit), t_near, active);
+            if (any(m)) {
+                if (node.is_leaf()) {
+                    for (uint32_t k = node.index; k < node.index + node.count; ++k)
+                        intersect_object_closest(scene, accel, accel.top.prim_ids[k], rays, m, hit,
+                                                 nodes_visited);
+                } else if (dir_neg[node.axis]) {
+                    stack[top++] = node_index + 1;
+                    node_index = node.index;
+                    continue;
+                } else {
+                    stack[top++] = node.index;
+                    node_index = node_index + 1;
+                    continue;
+                }
+            }
+            if (top == 0) break;
+            node_index = stack[--top];
+        }
+    }
+    return hit;
+}
+
+template <int W>
+vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
+                       vmask<W> active) {
+    vmask<W> found = mask_and(active, mask_not(active));
+    for (uint32_t object : accel.unbounded) {
+        found = mask_or(
+            found, intersect_object_any(scene, accel, object, rays, mask_andnot(active, found)));
+    }
+    vmask<W> open = mask_andnot(active, found);
+    if (any(open) && !accel.top.nodes.empty()) {
+        const SlabPacket<W> sr = make_slab_ray(rays);
+        uint32_t stack[stack_size];
+        int top = 0;
+        uint32_t node_index = 0;
+        for (;;) {
+            const BvhNode& node = accel.top.nodes[node_index];
+            vfloat<W> t_near;
+            const vec3 lo(node.lo[0], node.lo[1], node.lo[2]);
+            const vec3 hi(node.hi[0], node.hi[1], node.hi[2]);
+            const vmask<W> m = intersect_slab(sr, lo, hi, rays.t_min, rays.t_max, t_near, open);
+            if (any(m)) {
+                if (node.is_leaf()) {
+                    for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+                        const vmask<W> lanes = mask_andnot(m, found);
+                        if (none(lanes)) break;
+                        found = mask_or(
+                            found,
+                            intersect_object_any(scene, accel, accel.top.prim_ids[k], rays, lanes));
+                    }
+                    open = mask_andnot(active, found);
+                    if (none(open)) break;
+                } else {
+                    stack[top++] = node.index;
+                    node_index = node_index + 1;
+                    continue;
+                }
+            }
+            if (top == 0) break;
+            node_index = stack[--top];
+        }
+    }
+    return found;
+}
+
+// Instantiations: W = 1 (the packet code at scalar width) and every width this build runs.
+template vfloat<1> next_float_up<1>(const vfloat<1>&);
+template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const RayPacket<1>&,
+                                           vmask<1>, vint<1>*);
+template vmask<1> intersect_any<1>(const Scene&, const Accel&, const RayPacket<1>&, vmask<1>);
+#if XSIMD_WITH_SSE2
+template vfloat<4> next_float_up<4>(const vfloat<4>&);
+template HitPacket<4> intersect_closest<4>(const Scene&, const Accel&, const RayPacket<4>&,
+                                           vmask<4>, vint<4>*);
+template vmask<4> intersect_any<4>(const Scene&, const Accel&, const RayPacket<4>&, vmask<4>);
+#endif
+#if XSIMD_WITH_AVX2
+template vfloat<8> next_float_up<8>(const vfloat<8>&);
+template HitPacket<8> intersect_closest<8>(const Scene&, const Accel&, const RayPacket<8>&,
+                                           vmask<8>, vint<8>*);
+template vmask<8> intersect_any<8>(const Scene&, const Accel&, const RayPacket<8>&, vmask<8>);
+#endif
+#if XSIMD_WITH_AVX512F
+template vfloat<16> next_float_up<16>(const vfloat<16>&);
+template HitPacket<16> intersect_closest<16>(const Scene&, const Accel&, const RayPacket<16>&,
+                                             vmask<16>, vint<16>*);
+template vmask<16> intersect_any<16>(const Scene&, const Accel&, const RayPacket<16>&, vmask<16>);
+#endif
+
+}  // namespace raylane

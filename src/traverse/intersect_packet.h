@@ -1,0 +1,27 @@
+// traverse: closest-hit and any-hit queries of W rays against the whole scene (both BVH
+// levels), the packet path. Mirrors intersect_scalar.h.
+#pragma once
+
+#include "accel/bvh.h"
+#include "core/ray_packet.h"
+#include "scene/scene.h"
+
+namespace raylane {
+
+/// The closest hit of each active lane in (t_min, t_max), with the scalar path's tie-break
+/// (smaller t, then object, then primitive). Inactive lanes come back as misses.
+/// `nodes_visited`, when given, counts per lane the BVH nodes tested while the lane was active.
+template <int W>
+HitPacket<W> intersect_closest(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
+                               vmask<W> active, vint<W>* nodes_visited = nullptr);
+
+/// The active lanes that hit anything in (t_min, t_max) (shadow rays).
+template <int W>
+vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
+                       vmask<W> active);
+
+/// Smallest float above x, lane-wise (std::nextafter(x, +inf)); +inf stays +inf.
+template <int W>
+vfloat<W> next_float_up(const vfloat<W>& x);
+
+}  // namespace raylane

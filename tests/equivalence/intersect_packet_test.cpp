@@ -1,0 +1,254 @@
+// Equivalence of traverse/intersect_packet.cpp with traverse/intersect_scalar.cpp: the same
+// closest hits (object, primitive, t) and the same any-hit answers, ray by ray, at every packet
+// width this machine runs, on coherent camera rays, shadow rays and incoherent bounce rays.
+#include "traverse/intersect_packet.h"
+
+#include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <random>
+
+#include "core/offset.h"
+#include "io/load_scene.h"
+#include "render/camera_rays.h"
+#include "traverse/intersect_scalar.h"
+
+namespace raylane {
+namespace {
+
+#ifdef RAYLANE_SANITIZED
+constexpr int ray_target = 20000;  // per set; the sanitizer build checks the same code paths
+#else
+constexpr int ray_target = 1000000;
+#endif
+
+struct Loaded {
+    Scene scene;
+    Accel accel;
+};
+
+/// A scene from scenes/ (nullptr when its model is absent).
+std::shared_ptr<Loaded> load(const std::string& name) {
+    static std::map<std::string, std::shared_ptr<Loaded>> cache;
+    if (auto it = cache.find(name); it != cache.end()) return it->second;
+    std::shared_ptr<Loaded> l;
+    try {
+        l = std::make_shared<Loaded>();
+        l->scene = name == "builtin"
+                       ? make_builtin_scene()
+                       : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
+        l->accel = build_accel(l->scene, BuildParams{});
+    } catch (const std::exception&) {
+        l = nullptr;
+    }
+    return cache[name] = l;
+}
+
+/// The three ray sets of a scene, with the scalar path's answers.
+struct RaySets {
+    std::vector<Ray> camera, shadow, bounce;
+    std::vector<Hit> camera_hits, bounce_hits;
+    std::vector<uint8_t> shadow_blocked;
+};
+
+RaySets make_ray_sets(const Loaded& l) {
+    RaySets s;
+    Camera cam = l.scene.camera;
+    const double aspect = double(cam.width) / cam.height;
+    cam.height = std::max(1, int(std::sqrt(ray_target / aspect)));
+    cam.width = std::max(1, ray_target / cam.height);
+    const CameraFrame frame = make_camera_frame(cam);
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x)
+            s.camera.push_back(camera_ray(frame, float(x) + 0.5f, float(y) + 0.5f));
+    s.camera_hits.resize(s.camera.size());
+    tbb::parallel_for(size_t(0), s.camera.size(), [&](size_t i) {
+        s.camera_hits[i] = intersect_closest(l.scene, l.accel, s.camera[i]);
+    });
+    // shadow rays to every light and one cosine-distributed bounce per hit
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+    for (size_t i = 0; i < s.camera.size(); ++i) {
+        const Hit& h = s.camera_hits[i];
+        if (!h.hit()) continue;
+        const SurfacePoint sp = surface_at(l.scene, s.camera[i], h);
+        vec3 n = sp.geometric_normal;
+        if (glm::dot(n, s.camera[i].dir) > 0.0f) n = -n;
+        const vec3 o = offset_ray_origin(sp.position, n);
+        for (const Light& light : l.scene.lights) {
+            Ray r;
+            r.org = o;
+            if (light.kind == LightKind::point) {
+                r.dir = light.position - o;
+                r.t_max = 1.0f;
+            } else {
+                r.dir = light.direction;
+            }
+            s.shadow.push_back(r);
+        }
+        const float u1 = uni(rng), u2 = uni(rng);
+        const float rad = std::sqrt(u1), phi = 6.2831853f * u2;
+        const vec3 t = glm::normalize(std::fabs(n.x) > 0.5f ? glm::cross(n, vec3(0, 1, 0))
+                                                            : glm::cross(n, vec3(1, 0, 0)));
+        const vec3 b = glm::cross(n, t);
+        Ray r;
+        r.org = o;
+        r.dir = rad * std::cos(phi) * t + rad * std::sin(phi) * b +
+                std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
+        s.bounce.push_back(r);
+    }
+    s.shadow_blocked.resize(s.shadow.size());
+    s.bounce_hits.resize(s.bounce.size());
+    tbb::parallel_for(size_t(0), s.shadow.size(), [&](size_t i) {
+        s.shadow_blocked[i] = intersect_any(l.scene, l.accel, s.shadow[i]);
+    });
+    tbb::parallel_for(size_t(0), s.bounce.size(), [&](size_t i) {
+        s.bounce_hits[i] = intersect_closest(l.scene, l.accel, s.bounce[i]);
+    });
+    return s;
+}
+
+/// Packets of W consecutive rays; the tail packet's spare lanes are inactive and benign.
+template <int W>
+RayPacket<W> make_packet(const std::vector<Ray>& rays, size_t first, vmask<W>& active) {
+    RayPacket<W> p;
+    uint32_t b = 0;
+    for (int i = 0; i < W; ++i) {
+        Ray r;
+        r.t_max = -1.0f;  // benign inactive lane
+        if (first + i < rays.size()) {
+            r = rays[first + i];
+            b |= 1u << i;
+        }
+        set_ray(p, i, r);
+    }
+    active = mask_from_bits<W>(b);
+    return p;
+}
+
+/// Counts lanes whose closest hit differs from the scalar answer (object, primitive or t).
+template <int W>
+size_t closest_mismatches(const Loaded& l, const std::vector<Ray>& rays,
+                          const std::vector<Hit>& want) {
+    std::atomic<size_t> bad{0};
+    tbb::parallel_for(size_t(0), (rays.size() + W - 1) / W, [&](size_t k) {
+        vmask<W> active;
+        const RayPacket<W> p = make_packet<W>(rays, k * W, active);
+        const HitPacket<W> got = intersect_closest(l.scene, l.accel, p, active);
+        for (int i = 0; i < W && k * W + i < rays.size(); ++i) {
+            const Hit g = get_hit(got, i), w = want[k * W + i];
+            if (g.object != w.object || g.prim != w.prim || (w.hit() && g.t != w.t)) ++bad;
+        }
+    });
+    return bad;
+}
+
+template <int W>
+size_t any_mismatches(const Loaded& l, const std::vector<Ray>& rays,
+                      const std::vector<uint8_t>& want) {
+    std::atomic<size_t> bad{0};
+    tbb::parallel_for(size_t(0), (rays.size() + W - 1) / W, [&](size_t k) {
+        vmask<W> active;
+        const RayPacket<W> p = make_packet<W>(rays, k * W, active);
+        const uint32_t got = bits(intersect_any(l.scene, l.accel, p, active));
+        for (int i = 0; i < W && k * W + i < rays.size(); ++i)
+            if (((got >> i) & 1u) != want[k * W + i]) ++bad;
+    });
+    return bad;
+}
+
+template <class T>
+class IntersectPacket : public ::testing::Test {};
+struct WidthName {
+    template <class T>
+    static std::string GetName(int) {
+        return "W" + std::to_string(T::value);
+    }
+};
+using Widths = supported_widths<::testing::Types>;
+TYPED_TEST_SUITE(IntersectPacket, Widths, WidthName);
+
+const RaySets& ray_sets(const std::string& name) {
+    static std::map<std::string, RaySets> cache;
+    if (auto it = cache.find(name); it != cache.end()) return it->second;
+    return cache[name] = make_ray_sets(*load(name));
+}
+
+// The allowance for rays within rounding of a shared edge: none. The packet triangle test does
+// the scalar test's float operations in the same order, so every lane is bit-identical.
+void check_scene(const std::string& name,
+                 size_t (*closest)(const Loaded&, const std::vector<Ray>&, const std::vector<Hit>&),
+                 size_t (*any_hit)(const Loaded&, const std::vector<Ray>&,
+                                   const std::vector<uint8_t>&)) {
+    const std::shared_ptr<Loaded> l = load(name);
+    if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
+    const RaySets& s = ray_sets(name);
+    size_t hits = 0;
+    for (const Hit& h : s.camera_hits) hits += h.hit();
+    EXPECT_GT(hits, s.camera.size() / 10) << "the camera rays must hit something";
+    EXPECT_GT(s.shadow.size(), s.camera.size() / 10);
+    EXPECT_EQ(closest(*l, s.camera, s.camera_hits), 0u) << "camera rays";
+    EXPECT_EQ(any_hit(*l, s.shadow, s.shadow_blocked), 0u) << "shadow rays";
+    EXPECT_EQ(closest(*l, s.bounce, s.bounce_hits), 0u) << "bounce rays";
+}
+
+TYPED_TEST(IntersectPacket, MatchesScalarOnTheDragon) {
+    constexpr int W = TypeParam::value;
+    check_scene("dragon", closest_mismatches<W>, any_mismatches<W>);
+}
+
+TYPED_TEST(IntersectPacket, MatchesScalarOnTheBunny) {
+    constexpr int W = TypeParam::value;
+    check_scene("bunny", closest_mismatches<W>, any_mismatches<W>);
+}
+
+TYPED_TEST(IntersectPacket, MatchesScalarOnEveryAnalyticShape) {
+    constexpr int W = TypeParam::value;
+    check_scene("builtin", closest_mismatches<W>, any_mismatches<W>);
+}
+
+TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
+    constexpr int W = TypeParam::value;
+    const std::shared_ptr<Loaded> l = load("builtin");
+    std::vector<Ray> rays;
+    const vec3 dirs[] = {{1, 0, 0},           {0, -1, 0},      {-0.0f, 0, 1}, {0, 0, -1},
+                         {0.0f, -0.0f, 1.0f}, {1e-30f, -1, 0}, {1, 1, 0},     {0, -1, 1}};
+    const vec3 origins[] = {{0, 0, -5}, {0, 3, 0}, {0, 0, 0}, {-1, 0.5f, 2}, {1, -1, 5}};
+    const float t_maxes[] = {infinity, 0.0f, 1.0f, 100.0f};
+    for (vec3 o : origins)
+        for (vec3 d : dirs)
+            for (float t_max : t_maxes) rays.push_back({o, d, 0.0f, t_max});
+    // origins on surfaces: the scalar hit points of a fan of rays, re-launched in both directions
+    const std::vector<Ray> first = rays;
+    for (const Ray& r : first) {
+        const Hit h = intersect_closest(l->scene, l->accel, r);
+        if (!h.hit()) continue;
+        const vec3 p = r.org + h.t * r.dir;
+        rays.push_back({p, r.dir, 0.0f, infinity});
+        rays.push_back({p, -r.dir, 0.0f, infinity});
+    }
+    std::vector<Hit> want(rays.size());
+    std::vector<uint8_t> blocked(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+        want[i] = intersect_closest(l->scene, l->accel, rays[i]);
+        blocked[i] = intersect_any(l->scene, l->accel, rays[i]);
+    }
+    EXPECT_EQ(closest_mismatches<W>(*l, rays, want), 0u);
+    EXPECT_EQ(any_mismatches<W>(*l, rays, blocked), 0u);
+}
+
+TYPED_TEST(IntersectPacket, NoActiveLanesMeansNoHits) {
+    constexpr int W = TypeParam::value;
+    const std::shared_ptr<Loaded> l = load("builtin");
+    RayPacket<W> p;  // all rays along +z from the origin: would hit the scene if active
+    const vmask<W> none_active = mask_from_bits<W>(0u);
+    const HitPacket<W> h = intersect_closest(l->scene, l->accel, p, none_active);
+    EXPECT_EQ(bits(h.t < vfloat<W>(infinity)), 0u);
+    EXPECT_EQ(bits(intersect_any(l->scene, l->accel, p, none_active)), 0u);
+}
+
+}  // namespace
+}  // namespace raylane
