@@ -12,6 +12,10 @@ namespace raylane {
 /// Adds the subcommand and its options; the callback runs it and stores the exit code.
 void add_render_command(CLI::App& app, int& exit_code);
 void add_info_command(CLI::App& app, int& exit_code);
+void add_compare_command(CLI::App& app, int& exit_code);
+
+/// Applies --width/--height to the camera; one alone keeps the aspect ratio.
+void apply_resolution(Camera& camera, int width, int height);
 
 /// A scene file, or the built-in scene when `path` is empty.
 Scene load_scene_or_builtin(const std::string& path);

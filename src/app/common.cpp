@@ -1,5 +1,7 @@
 // app: helpers the commands share.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "app/commands.h"
 #include "io/load_scene.h"
@@ -8,6 +10,19 @@ namespace raylane {
 
 Scene load_scene_or_builtin(const std::string& path) {
     return path.empty() ? make_builtin_scene() : load_scene(path);
+}
+
+void apply_resolution(Camera& cam, int width, int height) {
+    if (width > 0 && height > 0) {
+        cam.width = width;
+        cam.height = height;
+    } else if (width > 0) {
+        cam.height = std::max(1, int(std::lround(double(width) * cam.height / cam.width)));
+        cam.width = width;
+    } else if (height > 0) {
+        cam.width = std::max(1, int(std::lround(double(height) * cam.width / cam.height)));
+        cam.height = height;
+    }
 }
 
 double now_seconds() {

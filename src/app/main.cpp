@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
     int exit_code = 0;
     raylane::add_render_command(app, exit_code);
     raylane::add_info_command(app, exit_code);
+    raylane::add_compare_command(app, exit_code);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -9,33 +9,19 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "simd/simd.h"
 
 namespace raylane {
 namespace {
 
 struct RenderOptions {
-    std::string scene_path, output, aov = "color";
+    std::string scene_path, output, aov = "color", path = "packet";
     int spp = 0, threads = 0, width = 0, height = 0;
     uint32_t seed = 0;
     bool quiet = false;
 };
-
-/// Applies --width/--height; one alone keeps the camera's aspect ratio.
-void apply_resolution(Camera& cam, int width, int height) {
-    if (width > 0 && height > 0) {
-        cam.width = width;
-        cam.height = height;
-    } else if (width > 0) {
-        cam.height =
-            std::max(1, static_cast<int>(std::lround(double(width) * cam.height / cam.width)));
-        cam.width = width;
-    } else if (height > 0) {
-        cam.width =
-            std::max(1, static_cast<int>(std::lround(double(height) * cam.width / cam.height)));
-        cam.height = height;
-    }
-}
 
 std::string default_output(const RenderOptions& o) {
     std::string stem =
@@ -62,7 +48,8 @@ int run_render(const RenderOptions& o) {
     const Accel accel = build_accel(scene, BuildParams{});
     const double build_ms = elapsed_ms(t_build);
 
-    RenderResult result = render_scalar(scene, accel, params);
+    RenderResult result = o.path == "scalar" ? render_scalar(scene, accel, params)
+                                             : render_packet(scene, accel, params);
     const std::string output = o.output.empty() ? default_output(o) : o.output;
     const Film film = visualise_aov(result.film, params.aov);
     write_image(output, film, params.aov == Aov::color ? Encoding::srgb : Encoding::linear);
@@ -70,8 +57,12 @@ int run_render(const RenderOptions& o) {
     const RenderStats& s = result.stats;
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
     std::printf("scene      %s\n", scene.source.c_str());
-    std::printf("resolution %dx%d, %d spp, %s, scalar path, %d threads\n", scene.camera.width,
-                scene.camera.height, params.spp, aov_name(params.aov), threads);
+    std::printf("resolution %dx%d, %d spp, %s\n", scene.camera.width, scene.camera.height,
+                params.spp, aov_name(params.aov));
+    if (o.path == "scalar")
+        std::printf("path       scalar, %d threads\n", threads);
+    else
+        std::printf("path       packet (W = %d), %d threads\n", native_width, threads);
     std::printf("rays       %llu primary, %llu shadow\n",
                 static_cast<unsigned long long>(s.primary_rays),
                 static_cast<unsigned long long>(s.shadow_rays));
@@ -104,6 +95,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--aov", o->aov, "output: color, normal, depth or bvh-cost")
         ->check(CLI::IsMember({"color", "normal", "depth", "bvh-cost"}));
     cmd->add_option("--seed", o->seed, "seed of the sample hash");
+    cmd->add_option("--path", o->path, "renderer: packet (default) or scalar (the reference)")
+        ->check(CLI::IsMember({"packet", "scalar"}));
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
     cmd->callback([o, &exit_code] { exit_code = run_render(*o); });
 }

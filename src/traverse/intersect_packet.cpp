@@ -6,6 +6,7 @@
 
 #include "traverse/box_scalar.h"
 #include "traverse/cylinder_scalar.h"
+#include "traverse/intersect_scalar.h"
 #include "traverse/plane_scalar.h"
 #include "traverse/slab_packet.h"
 #include "traverse/sphere_scalar.h"
@@ -328,28 +329,123 @@ vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W
     return found;
 }
 
+template <int W>
+SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
+                            vmask<W> active) {
+    SurfacePacket<W> sp;
+    // gather: lanes on meshes get their triangle's vertices, normals and uvs in SoA
+    alignas(64) float pos[3][3][W] = {}, nrm[3][3][W] = {}, tex[3][2][W] = {};
+    alignas(64) int32_t material[W] = {};
+    uint32_t mesh_bits = 0, normal_bits = 0, uv_bits = 0;
+    for_each_active(active, [&](int i) {
+        const Object& object = scene.objects[static_cast<uint32_t>(get(hits.object, i))];
+        material[i] = static_cast<int32_t>(object.material);
+        if (object.kind != ShapeKind::mesh) return;
+        mesh_bits |= 1u << i;
+        const Mesh& mesh = scene.meshes[object.shape];
+        const uint32_t prim = static_cast<uint32_t>(get(hits.prim, i));
+        const uvec3 tri = mesh.tris[prim];
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k) pos[c][k][i] = mesh.positions[tri[c]][k];
+        if (!mesh.normal_tris.empty()) {
+            normal_bits |= 1u << i;
+            const uvec3 nt = mesh.normal_tris[prim];
+            for (int c = 0; c < 3; ++c)
+                for (int k = 0; k < 3; ++k) nrm[c][k][i] = mesh.normals[nt[c]][k];
+        }
+        if (!mesh.uv_tris.empty()) {
+            uv_bits |= 1u << i;
+            const uvec3 ut = mesh.uv_tris[prim];
+            for (int c = 0; c < 3; ++c)
+                for (int k = 0; k < 2; ++k) tex[c][k][i] = mesh.uvs[ut[c]][k];
+        }
+    });
+    sp.material = load<W>(material);
+    // mesh: the scalar formulas, W lanes at a time
+    if (mesh_bits != 0) {
+        const vmask<W> on_mesh = mask_from_bits<W>(mesh_bits);
+        const vfloat<W> u = hits.u, v = hits.v, w = vfloat<W>(1.0f) - u - v;
+        const Vec3<W> a = load_vec3<W>(pos[0][0], pos[0][1], pos[0][2]);
+        const Vec3<W> b = load_vec3<W>(pos[1][0], pos[1][1], pos[1][2]);
+        const Vec3<W> c = load_vec3<W>(pos[2][0], pos[2][1], pos[2][2]);
+        const Vec3<W> p = w * a + u * b + v * c;
+        const Vec3<W> ng = normalize(cross(b - a, c - a));
+        Vec3<W> ns = ng;
+        if (normal_bits != 0) {
+            const Vec3<W> n = w * load_vec3<W>(nrm[0][0], nrm[0][1], nrm[0][2]) +
+                              u * load_vec3<W>(nrm[1][0], nrm[1][1], nrm[1][2]) +
+                              v * load_vec3<W>(nrm[2][0], nrm[2][1], nrm[2][2]);
+            const vfloat<W> len = length(n);
+            const vmask<W> usable =
+                mask_and(mask_and(len > vfloat<W>(0.0f), len < vfloat<W>(infinity)),
+                         mask_from_bits<W>(normal_bits));
+            ns = select(usable, n / len, ng);
+        }
+        vfloat<W> tu = u, tv = v;
+        if (uv_bits != 0) {
+            const vmask<W> has_uv = mask_from_bits<W>(uv_bits);
+            tu =
+                select(has_uv,
+                       w * load<W>(tex[0][0]) + u * load<W>(tex[1][0]) + v * load<W>(tex[2][0]), u);
+            tv =
+                select(has_uv,
+                       w * load<W>(tex[0][1]) + u * load<W>(tex[1][1]) + v * load<W>(tex[2][1]), v);
+        }
+        sp.position = select(on_mesh, p, sp.position);
+        sp.geometric_normal = select(on_mesh, ng, sp.geometric_normal);
+        sp.shading_normal = select(on_mesh, ns, sp.shading_normal);
+        sp.u = select(on_mesh, tu, sp.u);
+        sp.v = select(on_mesh, tv, sp.v);
+    }
+    // analytic shapes: lane by lane
+    const vmask<W> analytic = mask_andnot(active, mask_from_bits<W>(mesh_bits));
+    for_each_active(analytic, [&](int i) {
+        const SurfacePoint s = surface_at(scene, get_ray(rays, i), get_hit(hits, i));
+        set(sp.position.x, i, s.position.x);
+        set(sp.position.y, i, s.position.y);
+        set(sp.position.z, i, s.position.z);
+        set(sp.geometric_normal.x, i, s.geometric_normal.x);
+        set(sp.geometric_normal.y, i, s.geometric_normal.y);
+        set(sp.geometric_normal.z, i, s.geometric_normal.z);
+        set(sp.shading_normal.x, i, s.shading_normal.x);
+        set(sp.shading_normal.y, i, s.shading_normal.y);
+        set(sp.shading_normal.z, i, s.shading_normal.z);
+        set(sp.u, i, s.uv.x);
+        set(sp.v, i, s.uv.y);
+    });
+    return sp;
+}
+
 // Instantiations: W = 1 (the packet code at scalar width) and every width this build runs.
 template vfloat<1> next_float_up<1>(const vfloat<1>&);
 template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const RayPacket<1>&,
                                            vmask<1>, vint<1>*);
 template vmask<1> intersect_any<1>(const Scene&, const Accel&, const RayPacket<1>&, vmask<1>);
+template SurfacePacket<1> surface_at<1>(const Scene&, const RayPacket<1>&, const HitPacket<1>&,
+                                        vmask<1>);
 #if XSIMD_WITH_SSE2
 template vfloat<4> next_float_up<4>(const vfloat<4>&);
 template HitPacket<4> intersect_closest<4>(const Scene&, const Accel&, const RayPacket<4>&,
                                            vmask<4>, vint<4>*);
 template vmask<4> intersect_any<4>(const Scene&, const Accel&, const RayPacket<4>&, vmask<4>);
+template SurfacePacket<4> surface_at<4>(const Scene&, const RayPacket<4>&, const HitPacket<4>&,
+                                        vmask<4>);
 #endif
 #if XSIMD_WITH_AVX2
 template vfloat<8> next_float_up<8>(const vfloat<8>&);
 template HitPacket<8> intersect_closest<8>(const Scene&, const Accel&, const RayPacket<8>&,
                                            vmask<8>, vint<8>*);
 template vmask<8> intersect_any<8>(const Scene&, const Accel&, const RayPacket<8>&, vmask<8>);
+template SurfacePacket<8> surface_at<8>(const Scene&, const RayPacket<8>&, const HitPacket<8>&,
+                                        vmask<8>);
 #endif
 #if XSIMD_WITH_AVX512F
 template vfloat<16> next_float_up<16>(const vfloat<16>&);
 template HitPacket<16> intersect_closest<16>(const Scene&, const Accel&, const RayPacket<16>&,
                                              vmask<16>, vint<16>*);
 template vmask<16> intersect_any<16>(const Scene&, const Accel&, const RayPacket<16>&, vmask<16>);
+template SurfacePacket<16> surface_at<16>(const Scene&, const RayPacket<16>&, const HitPacket<16>&,
+                                          vmask<16>);
 #endif
 
 }  // namespace raylane

@@ -20,6 +20,22 @@ template <int W>
 vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
                        vmask<W> active);
 
+/// Everything shading needs about W hits, in world space (the twin of SurfacePoint).
+template <int W>
+struct SurfacePacket {
+    Vec3<W> position;
+    Vec3<W> geometric_normal;
+    Vec3<W> shading_normal;
+    vfloat<W> u = vfloat<W>(0.0f), v = vfloat<W>(0.0f);
+    vint<W> material = vint<W>(0);
+};
+
+/// Evaluates position, normals and uv at the active lanes' hits (all must be hits). Mesh hits
+/// are evaluated W at a time; analytic shapes lane by lane through the scalar surface_at.
+template <int W>
+SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
+                            vmask<W> active);
+
 /// Smallest float above x, lane-wise (std::nextafter(x, +inf)); +inf stays +inf.
 template <int W>
 vfloat<W> next_float_up(const vfloat<W>& x);

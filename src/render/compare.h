@@ -1,0 +1,27 @@
+// render: comparing the two paths: image differences and primary-hit agreement.
+#pragma once
+
+#include <cstddef>
+
+#include "accel/bvh.h"
+#include "image/film.h"
+#include "scene/scene.h"
+
+namespace raylane {
+
+/// Per-channel differences of two films of the same size (linear values; NaN counts as a
+/// difference of infinity).
+struct ImageDiff {
+    double max_abs = 0.0;
+    double mean_abs = 0.0;
+    double rmse = 0.0;
+    double psnr_db = 0.0;         ///< 10 log10(1 / MSE), peak 1; +inf when identical
+    size_t pixels_over_8bit = 0;  ///< pixels with a channel differing by more than 1/255
+};
+ImageDiff diff_images(const Film& a, const Film& b);
+
+/// Primary rays through every pixel centre, traced by the scalar path and by the packet path
+/// at the native width: the number of pixels whose hit (object and primitive) differs.
+size_t primary_id_mismatches(const Scene& scene, const Accel& accel);
+
+}  // namespace raylane

@@ -1,0 +1,19 @@
+// render: the packet renderer: per tile, W-wide packets of primary rays traced and shaded
+// together. Mirrors render_scalar.h; the same samples, so the same image up to rounding.
+#pragma once
+
+#include "accel/bvh.h"
+#include "render/render_params.h"
+#include "scene/scene.h"
+
+namespace raylane {
+
+/// Renders like render_scalar, at the native packet width.
+RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderParams& params);
+
+/// The same at a chosen width (1, or any width this build runs), for tests and benchmarks.
+template <int W>
+RenderResult render_packet_width(const Scene& scene, const Accel& accel,
+                                 const RenderParams& params);
+
+}  // namespace raylane
