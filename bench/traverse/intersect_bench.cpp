@@ -1,0 +1,319 @@
+// Benchmarks of traverse/: the same rays through every contender, rays per second.
+// Scenes: the meshes of scenes/dragon.json and scenes/bunny.json (the mesh alone, so every
+// contender traces the same triangles). Ray sets: primary rays at 1920x1080 (1 sample at pixel
+// centres, in 16x16 tiles of 4x4 blocks), shadow rays from the primary hits to the scene's
+// lights, and one cosine-distributed bounce ray per hit (incoherent). Contenders: Raylane scalar,
+// Raylane packet at every width, and Embree 3 (rtcIntersect1 / 1M / 16, rtcOccluded1 / 16) when
+// it is installed. 1 and 2 threads (oneTBB; chunks of 256 rays).
+#include <benchmark/benchmark.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <random>
+
+#include "core/offset.h"
+#include "io/load_scene.h"
+#include "render/camera_rays.h"
+#include "render/tiles.h"
+#include "traverse/intersect_packet.h"
+#include "traverse/intersect_scalar.h"
+
+#ifdef RAYLANE_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#endif
+
+namespace raylane {
+namespace {
+
+constexpr size_t chunk = 256;  // rays per task
+
+struct Workload {
+    Scene scene;
+    Accel accel;
+    std::vector<Ray> primary, shadow, bounce;
+#ifdef RAYLANE_HAVE_EMBREE
+    RTCDevice device = nullptr;
+    RTCScene rtc_scene = nullptr;
+#endif
+};
+
+/// Primary rays in 16x16 tiles, 4x4 blocks inside a tile, row-major inside a block.
+std::vector<Ray> primary_rays(const Camera& cam) {
+    const CameraFrame frame = make_camera_frame(cam);
+    std::vector<Ray> rays;
+    rays.reserve(size_t(cam.width) * cam.height);
+    for (int ty = 0; ty < cam.height; ty += 16)
+        for (int tx = 0; tx < cam.width; tx += 16)
+            for (int by = ty; by < ty + 16; by += 4)
+                for (int bx = tx; bx < tx + 16; bx += 4)
+                    for (int y = by; y < by + 4; ++y)
+                        for (int x = bx; x < bx + 4; ++x)
+                            if (x < cam.width && y < cam.height)
+                                rays.push_back(camera_ray(frame, float(x) + 0.5f, float(y) + 0.5f));
+    return rays;
+}
+
+#ifdef RAYLANE_HAVE_EMBREE
+void build_embree(Workload& w) {
+    w.device = rtcNewDevice(nullptr);
+    w.rtc_scene = rtcNewScene(w.device);
+    for (const Mesh& mesh : w.scene.meshes) {
+        RTCGeometry g = rtcNewGeometry(w.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                              RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                              mesh.positions.size()));
+        for (size_t i = 0; i < mesh.positions.size(); ++i)
+            for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.positions[i][k];
+        auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.tris.size()));
+        for (size_t i = 0; i < mesh.tris.size(); ++i)
+            for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.tris[i][k];
+        rtcCommitGeometry(g);
+        rtcAttachGeometry(w.rtc_scene, g);
+        rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(w.rtc_scene);
+}
+#endif
+
+/// The mesh objects of a scene file with its camera at 1920x1080 and its lights, and the ray sets.
+Workload* workload(const std::string& name) {
+    static std::map<std::string, std::unique_ptr<Workload>> cache;
+    if (auto it = cache.find(name); it != cache.end()) return it->second.get();
+    std::unique_ptr<Workload> w;
+    try {
+        Scene full = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
+        w = std::make_unique<Workload>();
+        w->scene = full;
+        w->scene.objects.clear();
+        for (const Object& o : full.objects)
+            if (o.kind == ShapeKind::mesh) w->scene.objects.push_back(o);
+        w->scene.camera.width = 1920;
+        w->scene.camera.height = 1080;
+        w->accel = build_accel(w->scene, BuildParams{});
+    } catch (const std::exception&) {
+        return (cache[name] = nullptr).get();
+    }
+    w->primary = primary_rays(w->scene.camera);
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+    for (const Ray& r : w->primary) {
+        const Hit h = intersect_closest(w->scene, w->accel, r);
+        if (!h.hit()) continue;
+        const SurfacePoint sp = surface_at(w->scene, r, h);
+        vec3 n = sp.geometric_normal;
+        if (glm::dot(n, r.dir) > 0.0f) n = -n;
+        const vec3 o = offset_ray_origin(sp.position, n);
+        for (const Light& light : w->scene.lights) {
+            if (light.kind == LightKind::point)
+                w->shadow.push_back({o, light.position - o, 0.0f, 1.0f});
+            else
+                w->shadow.push_back({o, light.direction, 0.0f, infinity});
+        }
+        const float u1 = uni(rng), u2 = uni(rng), rad = std::sqrt(u1), phi = 6.2831853f * u2;
+        const vec3 t = glm::normalize(std::fabs(n.x) > 0.5f ? glm::cross(n, vec3(0, 1, 0))
+                                                           : glm::cross(n, vec3(1, 0, 0)));
+        const vec3 b = glm::cross(n, t);
+        w->bounce.push_back({o,
+                             rad * std::cos(phi) * t + rad * std::sin(phi) * b +
+                                 std::sqrt(std::max(0.0f, 1.0f - u1)) * n,
+                             0.0f, infinity});
+    }
+#ifdef RAYLANE_HAVE_EMBREE
+    build_embree(*w);
+#endif
+    return (cache[name] = std::move(w)).get();
+}
+
+const std::vector<Ray>& rays_of(const Workload& w, const std::string& set) {
+    return set == "primary" ? w.primary : set == "shadow" ? w.shadow : w.bounce;
+}
+
+/// Runs body(first, last) over the rays in chunks on `threads` threads; counts rays per second.
+template <class Body>
+void run(benchmark::State& state, const std::vector<Ray>& rays, int threads, Body&& body) {
+    tbb::task_arena arena(threads);
+    for (auto _ : state) {
+        arena.execute([&] {
+            tbb::parallel_for(size_t(0), (rays.size() + chunk - 1) / chunk, [&](size_t c) {
+                enable_flush_to_zero();
+                body(c * chunk, std::min(rays.size(), (c + 1) * chunk));
+            });
+        });
+    }
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(rays.size()));
+    state.counters["rays/s"] = benchmark::Counter(double(rays.size()) * double(state.iterations()),
+                                                  benchmark::Counter::kIsRate);
+}
+
+void bench_scalar(benchmark::State& state, std::string scene, std::string set, int threads) {
+    Workload* w = workload(scene);
+    if (!w) return state.SkipWithError("scene or model not found");
+    const std::vector<Ray>& rays = rays_of(*w, set);
+    const bool any_hit = set == "shadow";
+    run(state, rays, threads, [&](size_t first, size_t last) {
+        uint32_t sum = 0;
+        for (size_t i = first; i < last; ++i)
+            sum += any_hit ? intersect_any(w->scene, w->accel, rays[i])
+                           : intersect_closest(w->scene, w->accel, rays[i]).prim;
+        benchmark::DoNotOptimize(sum);
+    });
+}
+
+template <int W>
+void bench_packet(benchmark::State& state, std::string scene, std::string set, int threads) {
+    Workload* w = workload(scene);
+    if (!w) return state.SkipWithError("scene or model not found");
+    const std::vector<Ray>& rays = rays_of(*w, set);
+    const bool any_hit = set == "shadow";
+    run(state, rays, threads, [&](size_t first, size_t last) {
+        for (size_t i = first; i < last; i += W) {
+            RayPacket<W> p;
+            uint32_t b = 0;
+            for (int k = 0; k < W; ++k) {
+                Ray r = rays[std::min(i + k, last - 1)];
+                if (i + k < last) b |= 1u << k;
+                else r.t_max = -1.0f;
+                set_ray(p, k, r);
+            }
+            const vmask<W> active = mask_from_bits<W>(b);
+            if (any_hit) {
+                benchmark::DoNotOptimize(intersect_any(w->scene, w->accel, p, active));
+            } else {
+                HitPacket<W> h = intersect_closest(w->scene, w->accel, p, active);
+                benchmark::DoNotOptimize(h);
+            }
+        }
+    });
+}
+
+#ifdef RAYLANE_HAVE_EMBREE
+void bench_embree1(benchmark::State& state, std::string scene, std::string set, int threads) {
+    Workload* w = workload(scene);
+    if (!w) return state.SkipWithError("scene or model not found");
+    const std::vector<Ray>& rays = rays_of(*w, set);
+    const bool any_hit = set == "shadow";
+    run(state, rays, threads, [&](size_t first, size_t last) {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        unsigned sum = 0;
+        for (size_t i = first; i < last; ++i) {
+            const Ray& r = rays[i];
+            RTCRayHit rh{};
+            rh.ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y, r.dir.z, 0.0f,
+                      r.t_max, ~0u, 0u, 0u};
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            if (any_hit) {
+                rtcOccluded1(w->rtc_scene, &ctx, &rh.ray);
+                sum += rh.ray.tfar < 0.0f;
+            } else {
+                rtcIntersect1(w->rtc_scene, &ctx, &rh);
+                sum += rh.hit.primID;
+            }
+        }
+        benchmark::DoNotOptimize(sum);
+    });
+}
+
+void bench_embree16(benchmark::State& state, std::string scene, std::string set, int threads,
+                    bool stream) {
+    Workload* w = workload(scene);
+    if (!w) return state.SkipWithError("scene or model not found");
+    const std::vector<Ray>& rays = rays_of(*w, set);
+    const bool any_hit = set == "shadow";
+    run(state, rays, threads, [&](size_t first, size_t last) {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        if (set == "primary") ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        if (stream) {
+            alignas(64) RTCRayHit rh[chunk];
+            const size_t n = last - first;
+            for (size_t k = 0; k < n; ++k) {
+                const Ray& r = rays[first + k];
+                rh[k].ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y, r.dir.z, 0.0f,
+                             r.t_max, ~0u, 0u, 0u};
+                rh[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect1M(w->rtc_scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
+            benchmark::DoNotOptimize(rh[0].hit.primID);
+            return;
+        }
+        for (size_t i = first; i < last; i += 16) {
+            alignas(64) RTCRayHit16 rh;
+            alignas(64) int valid[16];
+            for (int k = 0; k < 16; ++k) {
+                const Ray& r = rays[std::min(i + k, last - 1)];
+                valid[k] = i + k < last ? -1 : 0;
+                rh.ray.org_x[k] = r.org.x, rh.ray.org_y[k] = r.org.y, rh.ray.org_z[k] = r.org.z;
+                rh.ray.dir_x[k] = r.dir.x, rh.ray.dir_y[k] = r.dir.y, rh.ray.dir_z[k] = r.dir.z;
+                rh.ray.tnear[k] = r.t_min, rh.ray.tfar[k] = r.t_max, rh.ray.time[k] = 0.0f;
+                rh.ray.mask[k] = ~0u, rh.ray.id[k] = 0, rh.ray.flags[k] = 0;
+                rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            }
+            if (any_hit)
+                rtcOccluded16(valid, w->rtc_scene, &ctx, &rh.ray);
+            else
+                rtcIntersect16(valid, w->rtc_scene, &ctx, &rh);
+            benchmark::DoNotOptimize(rh.hit.primID[0]);
+        }
+    });
+}
+#endif
+
+template <int W>
+void register_packet(const std::string& scene, const std::string& set, int threads) {
+    const std::string suffix = "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
+    benchmark::RegisterBenchmark(("BM_Intersect_Packet" + std::to_string(W) + suffix).c_str(),
+                                 bench_packet<W>, scene, set, threads)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+}
+
+void register_all() {
+    for (std::string scene : {"dragon", "bunny"}) {
+        for (std::string set : {"primary", "shadow", "bounce"}) {
+            for (int threads : {1, 2}) {
+                const std::string suffix =
+                    "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
+                benchmark::RegisterBenchmark(("BM_Intersect_Scalar" + suffix).c_str(),
+                                             bench_scalar, scene, set, threads)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime();
+                register_packet<1>(scene, set, threads);
+                if constexpr (width_supported<4>) register_packet<4>(scene, set, threads);
+                if constexpr (width_supported<8>) register_packet<8>(scene, set, threads);
+                if constexpr (width_supported<16>) register_packet<16>(scene, set, threads);
+#ifdef RAYLANE_HAVE_EMBREE
+                benchmark::RegisterBenchmark(("BM_Intersect_Embree1" + suffix).c_str(),
+                                             bench_embree1, scene, set, threads)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime();
+                benchmark::RegisterBenchmark(("BM_Intersect_Embree16" + suffix).c_str(),
+                                             bench_embree16, scene, set, threads, false)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime();
+                if (set != "shadow")
+                    benchmark::RegisterBenchmark(("BM_Intersect_Embree1M" + suffix).c_str(),
+                                                 bench_embree16, scene, set, threads, true)
+                        ->Unit(benchmark::kMillisecond)
+                        ->UseRealTime();
+#endif
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace raylane
+
+int main(int argc, char** argv) {
+    raylane::register_all();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
