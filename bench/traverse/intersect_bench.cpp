@@ -171,20 +171,41 @@ void bench_packet(benchmark::State& state, std::string scene, std::string set, i
     const bool any_hit = set == "shadow";
     run(state, rays, threads, [&](size_t first, size_t last) {
         for (size_t i = first; i < last; i += W) {
-            RayPacket<W> p;
-            uint32_t b = 0;
-            for (int k = 0; k < W; ++k) {
-                Ray r = rays[std::min(i + k, last - 1)];
-                if (i + k < last) b |= 1u << k;
-                else r.t_max = -1.0f;
-                set_ray(p, k, r);
-            }
-            const vmask<W> active = mask_from_bits<W>(b);
+            vmask<W> active;
+            const RayPacket<W> p = load_rays<W>(&rays[i], int(std::min<size_t>(W, last - i)), active);
             if (any_hit) {
                 benchmark::DoNotOptimize(intersect_any(w->scene, w->accel, p, active));
             } else {
                 HitPacket<W> h = intersect_closest(w->scene, w->accel, p, active);
                 benchmark::DoNotOptimize(h);
+            }
+        }
+    });
+}
+
+/// Blocks of max_block_rays consecutive rays (a 16x16 tile for the primary rays).
+template <int W>
+void bench_block(benchmark::State& state, std::string scene, std::string set, int threads) {
+    Workload* w = workload(scene);
+    if (!w) return state.SkipWithError("scene or model not found");
+    const std::vector<Ray>& rays = rays_of(*w, set);
+    const bool any_hit = set == "shadow";
+    static_assert(chunk % max_block_rays == 0);
+    run(state, rays, threads, [&](size_t first, size_t last) {
+        constexpr int per_block = max_block_rays / W;
+        RayPacket<W> p[per_block];
+        vmask<W> active[per_block], occluded[per_block];
+        HitPacket<W> hits[per_block];
+        for (size_t b = first; b < last; b += max_block_rays) {
+            int count = 0;
+            for (size_t i = b; i < std::min(last, b + max_block_rays); i += W, ++count)
+                p[count] = load_rays<W>(&rays[i], int(std::min<size_t>(W, last - i)), active[count]);
+            if (any_hit) {
+                intersect_any_block(w->scene, w->accel, p, active, occluded, count);
+                benchmark::DoNotOptimize(occluded[0]);
+            } else {
+                intersect_closest_block(w->scene, w->accel, p, active, hits, count);
+                benchmark::DoNotOptimize(hits[0]);
             }
         }
     });
@@ -272,6 +293,15 @@ void register_packet(const std::string& scene, const std::string& set, int threa
         ->UseRealTime();
 }
 
+template <int W>
+void register_block(const std::string& scene, const std::string& set, int threads) {
+    const std::string suffix = "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
+    benchmark::RegisterBenchmark(("BM_Intersect_Block" + std::to_string(W) + suffix).c_str(),
+                                 bench_block<W>, scene, set, threads)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+}
+
 void register_all() {
     for (std::string scene : {"dragon", "bunny"}) {
         for (std::string set : {"primary", "shadow", "bounce"}) {
@@ -286,6 +316,8 @@ void register_all() {
                 if constexpr (width_supported<4>) register_packet<4>(scene, set, threads);
                 if constexpr (width_supported<8>) register_packet<8>(scene, set, threads);
                 if constexpr (width_supported<16>) register_packet<16>(scene, set, threads);
+                if constexpr (width_supported<8>) register_block<8>(scene, set, threads);
+                if constexpr (width_supported<16>) register_block<16>(scene, set, threads);
 #ifdef RAYLANE_HAVE_EMBREE
                 benchmark::RegisterBenchmark(("BM_Intersect_Embree1" + suffix).c_str(),
                                              bench_embree1, scene, set, threads)

@@ -2,10 +2,12 @@
 // lanes at a time, each lane with its own active flag and interval.
 #include "traverse/intersect_packet.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "traverse/box_scalar.h"
 #include "traverse/cylinder_scalar.h"
+#include "simd/bits.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/plane_scalar.h"
 #include "traverse/slab_packet.h"
@@ -19,9 +21,13 @@ vfloat<W> next_float_up(const vfloat<W>& x) {
     if constexpr (W == 1) {
         return std::nextafter(x, infinity);
     } else {
-        vfloat<W> out = x;
-        for (int i = 0; i < W; ++i) set(out, i, std::nextafter(get(x, i), infinity));
-        return out;
+        // one step up the float bit patterns: +1 above zero, -1 below it (sign-magnitude)
+        const vint<W> b = as_int(x);
+        const vfloat<W> up = as_float(b + vint<W>(1)), down = as_float(b - vint<W>(1));
+        const vfloat<W> zero(0.0f);
+        vfloat<W> out = select(x > zero, up, select(x < zero, down, x));
+        out = select(x == zero, as_float(vint<W>(1)), out);   // +-0 -> smallest denormal
+        return select(x == vfloat<W>(infinity), x, out);      // +inf stays, NaN stays
     }
 }
 
@@ -416,11 +422,265 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
     return sp;
 }
 
+
+// ---- blocks of packets ------------------------------------------------------------------------
+
+namespace {
+
+/// Interval bounds of a block's rays, for culling a node for all of them at once.
+struct BlockBounds {
+    vec3 org_lo{infinity}, org_hi{-infinity};
+    vec3 inv_lo{infinity}, inv_hi{-infinity};
+    bool usable[3] = {false, false, false};  ///< reciprocals finite and of one sign on this axis
+    int dir_neg[3] = {0, 0, 0};              ///< the block's direction signs, for near-first order
+};
+
+template <int W>
+BlockBounds make_block_bounds(const SlabPacket<W>* sr, const vmask<W>* active, int count) {
+    BlockBounds b;
+    bool seen = false;
+    for (int p = 0; p < count; ++p) {
+        if (none(active[p])) continue;
+        const vfloat<W>* org[3] = {&sr[p].org.x, &sr[p].org.y, &sr[p].org.z};
+        const vfloat<W>* inv[3] = {&sr[p].inv_dir.x, &sr[p].inv_dir.y, &sr[p].inv_dir.z};
+        for (int k = 0; k < 3; ++k) {
+            b.org_lo[k] = std::min(b.org_lo[k], hmin(*org[k], active[p]));
+            b.org_hi[k] = std::max(b.org_hi[k], hmax(*org[k], active[p]));
+            b.inv_lo[k] = std::min(b.inv_lo[k], hmin(*inv[k], active[p]));
+            b.inv_hi[k] = std::max(b.inv_hi[k], hmax(*inv[k], active[p]));
+        }
+        if (!seen) {
+            const int lane = first_active(active[p]);
+            for (int k = 0; k < 3; ++k) b.dir_neg[k] = get(*inv[k], lane) < 0.0f;
+            seen = true;
+        }
+    }
+    for (int k = 0; k < 3; ++k) {
+        const bool finite = std::isfinite(b.inv_lo[k]) && std::isfinite(b.inv_hi[k]) &&
+                            std::isfinite(b.org_lo[k]) && std::isfinite(b.org_hi[k]);
+        b.usable[k] = finite && (b.inv_lo[k] > 0.0f || b.inv_hi[k] < 0.0f);
+    }
+    return b;
+}
+
+/// False only when no ray of the block can touch the box at t >= 0: interval arithmetic over
+/// the origins and reciprocals, with a relative margin far above float rounding.
+bool block_may_hit(const BlockBounds& b, const BvhNode& node) {
+    float t0 = 0.0f, t1 = infinity;
+    for (int k = 0; k < 3; ++k) {
+        if (!b.usable[k]) continue;
+        const bool neg = b.inv_hi[k] < 0.0f;
+        const float enter = neg ? node.hi[k] : node.lo[k];
+        const float exit = neg ? node.lo[k] : node.hi[k];
+        const float e0 = enter - b.org_hi[k], e1 = enter - b.org_lo[k];
+        const float x0 = exit - b.org_hi[k], x1 = exit - b.org_lo[k];
+        const float enter_min = std::min(std::min(e0 * b.inv_lo[k], e0 * b.inv_hi[k]),
+                                         std::min(e1 * b.inv_lo[k], e1 * b.inv_hi[k]));
+        const float exit_max = std::max(std::max(x0 * b.inv_lo[k], x0 * b.inv_hi[k]),
+                                        std::max(x1 * b.inv_lo[k], x1 * b.inv_hi[k]));
+        t0 = std::max(t0, enter_min);
+        t1 = std::min(t1, exit_max);
+    }
+    const float margin = 1e-4f * (std::fabs(t0) + std::fabs(t1 == infinity ? 0.0f : t1)) + 1e-30f;
+    return t0 <= t1 + margin;
+}
+
+/// Ranged traversal of one BVH by a block: leaf(node, first, last) is called with the packets
+/// [first, last] that touch the leaf; test(p, node) is packet p's slab mask for the node.
+template <int W, class Test, class Leaf>
+void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&& test,
+                    Leaf&& leaf) {
+    struct Entry {
+        uint32_t node;
+        uint16_t first, last;  // packets [first, last)
+    };
+    Entry stack[stack_size];
+    int top = 0;
+    Entry e{0, 0, static_cast<uint16_t>(count)};
+    for (;;) {
+        const BvhNode& node = bvh.nodes[e.node];
+        // first packet that touches the node (interval culling when the first one does not)
+        int f = e.first;
+        bool touched = any(test(f, node));
+        if (!touched && block_may_hit(bounds, node)) {
+            for (++f; f < e.last; ++f) {
+                if (any(test(f, node))) {
+                    touched = true;
+                    break;
+                }
+            }
+        }
+        if (touched) {
+            const int l = e.last - 1;  // leaves test each packet of [f, l] anyway
+            if (node.is_leaf()) {
+                leaf(node, f, l);
+            } else {
+                const uint16_t f16 = static_cast<uint16_t>(f), l16 = static_cast<uint16_t>(l + 1);
+                if (bounds.dir_neg[node.axis]) {
+                    stack[top++] = {e.node + 1, f16, l16};
+                    e = {node.index, f16, l16};
+                } else {
+                    stack[top++] = {node.index, f16, l16};
+                    e = {e.node + 1, f16, l16};
+                }
+                continue;
+            }
+        }
+        if (top == 0) break;
+        e = stack[--top];
+    }
+}
+
+}  // namespace
+
+template <int W>
+void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+                             const vmask<W>* active, HitPacket<W>* hits, int count) {
+    SlabPacket<W> sr[max_block_rays / W];
+    vfloat<W> limit[max_block_rays / W];
+    for (int p = 0; p < count; ++p) {
+        hits[p] = HitPacket<W>{};
+        sr[p] = make_slab_ray(rays[p]);
+    }
+    for (uint32_t object : accel.unbounded)
+        for (int p = 0; p < count; ++p)
+            if (any(active[p]))
+                intersect_object_closest(scene, accel, object, rays[p], active[p], hits[p],
+                                         static_cast<vint<W>*>(nullptr));
+    if (accel.top.nodes.empty()) return;
+    for (int p = 0; p < count; ++p) limit[p] = t_limit(rays[p], hits[p]);
+    const BlockBounds bounds = make_block_bounds(sr, active, count);
+    auto test = [&](int p, const BvhNode& node) {
+        vfloat<W> t_near;
+        return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
+                              vec3(node.hi[0], node.hi[1], node.hi[2]), rays[p].t_min, limit[p],
+                              t_near, active[p]);
+    };
+    WatertightPacket<W> wr[max_block_rays / W];
+    bool wr_ready[max_block_rays / W] = {};
+    traverse_block<W>(accel.top, bounds, count, test, [&](const BvhNode& top_leaf, int f, int l) {
+        for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
+            const uint32_t object_index = accel.top.prim_ids[k];
+            const Object& object = scene.objects[object_index];
+            if (object.kind != ShapeKind::mesh) {
+                for (int p = f; p <= l; ++p) {
+                    const vmask<W> m = test(p, top_leaf);
+                    if (any(m)) {
+                        intersect_object_closest(scene, accel, object_index, rays[p], m, hits[p],
+                                                 static_cast<vint<W>*>(nullptr));
+                        limit[p] = t_limit(rays[p], hits[p]);
+                    }
+                }
+                continue;
+            }
+            // a mesh: the same ranged traversal over its own BVH, for packets [f, l]
+            const MeshAccel& mesh = accel.meshes[object.shape];
+            if (mesh.bvh.nodes.empty()) continue;
+            for (int p = f; p <= l; ++p) {
+                if (!wr_ready[p]) wr[p] = make_watertight_ray(rays[p], active[p]);
+                wr_ready[p] = true;
+            }
+            traverse_block<W>(
+                mesh.bvh, bounds, l + 1 - f,
+                [&](int q, const BvhNode& node) { return test(f + q, node); },
+                [&](const BvhNode& leaf, int qf, int ql) {
+                    for (int p = f + qf; p <= f + ql; ++p) {
+                        const vmask<W> m = test(p, leaf);
+                        if (none(m)) continue;
+                        for (uint32_t j = leaf.index; j < leaf.index + leaf.count; ++j) {
+                            const TriangleVerts& tv = mesh.verts[j];
+                            vfloat<W> t(infinity), u(0.0f), v(0.0f);
+                            const vmask<W> h = intersect_triangle(wr[p], tv.a, tv.b, tv.c,
+                                                                  rays[p].t_min, limit[p], t, u,
+                                                                  v, m);
+                            if (any(h)) {
+                                const uint32_t prim = mesh.bvh.prim_ids[j];
+                                record(hits[p], better(t, object_index, prim, hits[p], h), t,
+                                       object_index, prim, u, v);
+                                limit[p] = t_limit(rays[p], hits[p]);
+                            }
+                        }
+                    }
+                });
+        }
+    });
+}
+
+template <int W>
+void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+                         const vmask<W>* active, vmask<W>* occluded, int count) {
+    SlabPacket<W> sr[max_block_rays / W];
+    vmask<W> open[max_block_rays / W];
+    for (int p = 0; p < count; ++p) {
+        sr[p] = make_slab_ray(rays[p]);
+        occluded[p] = mask_and(active[p], mask_not(active[p]));
+        for (uint32_t object : accel.unbounded) {
+            const vmask<W> lanes = mask_andnot(active[p], occluded[p]);
+            if (any(lanes))
+                occluded[p] =
+                    mask_or(occluded[p], intersect_object_any(scene, accel, object, rays[p], lanes));
+        }
+        open[p] = mask_andnot(active[p], occluded[p]);
+    }
+    if (accel.top.nodes.empty()) return;
+    const BlockBounds bounds = make_block_bounds(sr, open, count);
+    auto test = [&](int p, const BvhNode& node) {
+        vfloat<W> t_near;
+        return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
+                              vec3(node.hi[0], node.hi[1], node.hi[2]), rays[p].t_min,
+                              rays[p].t_max, t_near, open[p]);
+    };
+    WatertightPacket<W> wr[max_block_rays / W];
+    bool wr_ready[max_block_rays / W] = {};
+    traverse_block<W>(accel.top, bounds, count, test, [&](const BvhNode& top_leaf, int f, int l) {
+        for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
+            const uint32_t object_index = accel.top.prim_ids[k];
+            const Object& object = scene.objects[object_index];
+            if (object.kind != ShapeKind::mesh) {
+                for (int p = f; p <= l; ++p) {
+                    const vmask<W> m = test(p, top_leaf);
+                    if (none(m)) continue;
+                    occluded[p] = mask_or(occluded[p],
+                                          intersect_object_any(scene, accel, object_index, rays[p], m));
+                    open[p] = mask_andnot(active[p], occluded[p]);
+                }
+                continue;
+            }
+            const MeshAccel& mesh = accel.meshes[object.shape];
+            if (mesh.bvh.nodes.empty()) continue;
+            for (int p = f; p <= l; ++p) {
+                if (!wr_ready[p]) wr[p] = make_watertight_ray(rays[p], active[p]);
+                wr_ready[p] = true;
+            }
+            traverse_block<W>(
+                mesh.bvh, bounds, l + 1 - f,
+                [&](int q, const BvhNode& node) { return test(f + q, node); },
+                [&](const BvhNode& leaf, int qf, int ql) {
+                    for (int p = f + qf; p <= f + ql; ++p) {
+                        for (uint32_t j = leaf.index; j < leaf.index + leaf.count; ++j) {
+                            const vmask<W> m = test(p, leaf);
+                            if (none(m)) break;
+                            const TriangleVerts& tv = mesh.verts[j];
+                            vfloat<W> t(infinity), u(0.0f), v(0.0f);
+                            const vmask<W> h = intersect_triangle(wr[p], tv.a, tv.b, tv.c,
+                                                                  rays[p].t_min, rays[p].t_max, t,
+                                                                  u, v, m);
+                            occluded[p] = mask_or(occluded[p], h);
+                            open[p] = mask_andnot(active[p], occluded[p]);
+                        }
+                    }
+                });
+        }
+    });
+}
+
 // Instantiations: W = 1 (the packet code at scalar width) and every width this build runs.
 template vfloat<1> next_float_up<1>(const vfloat<1>&);
 template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const RayPacket<1>&,
                                            vmask<1>, vint<1>*);
 template vmask<1> intersect_any<1>(const Scene&, const Accel&, const RayPacket<1>&, vmask<1>);
+template void intersect_closest_block<1>(const Scene&, const Accel&, const RayPacket<1>*, const vmask<1>*, HitPacket<1>*, int);
+template void intersect_any_block<1>(const Scene&, const Accel&, const RayPacket<1>*, const vmask<1>*, vmask<1>*, int);
 template SurfacePacket<1> surface_at<1>(const Scene&, const RayPacket<1>&, const HitPacket<1>&,
                                         vmask<1>);
 #if XSIMD_WITH_SSE2
@@ -428,6 +688,8 @@ template vfloat<4> next_float_up<4>(const vfloat<4>&);
 template HitPacket<4> intersect_closest<4>(const Scene&, const Accel&, const RayPacket<4>&,
                                            vmask<4>, vint<4>*);
 template vmask<4> intersect_any<4>(const Scene&, const Accel&, const RayPacket<4>&, vmask<4>);
+template void intersect_closest_block<4>(const Scene&, const Accel&, const RayPacket<4>*, const vmask<4>*, HitPacket<4>*, int);
+template void intersect_any_block<4>(const Scene&, const Accel&, const RayPacket<4>*, const vmask<4>*, vmask<4>*, int);
 template SurfacePacket<4> surface_at<4>(const Scene&, const RayPacket<4>&, const HitPacket<4>&,
                                         vmask<4>);
 #endif
@@ -436,6 +698,8 @@ template vfloat<8> next_float_up<8>(const vfloat<8>&);
 template HitPacket<8> intersect_closest<8>(const Scene&, const Accel&, const RayPacket<8>&,
                                            vmask<8>, vint<8>*);
 template vmask<8> intersect_any<8>(const Scene&, const Accel&, const RayPacket<8>&, vmask<8>);
+template void intersect_closest_block<8>(const Scene&, const Accel&, const RayPacket<8>*, const vmask<8>*, HitPacket<8>*, int);
+template void intersect_any_block<8>(const Scene&, const Accel&, const RayPacket<8>*, const vmask<8>*, vmask<8>*, int);
 template SurfacePacket<8> surface_at<8>(const Scene&, const RayPacket<8>&, const HitPacket<8>&,
                                         vmask<8>);
 #endif
@@ -444,6 +708,8 @@ template vfloat<16> next_float_up<16>(const vfloat<16>&);
 template HitPacket<16> intersect_closest<16>(const Scene&, const Accel&, const RayPacket<16>&,
                                              vmask<16>, vint<16>*);
 template vmask<16> intersect_any<16>(const Scene&, const Accel&, const RayPacket<16>&, vmask<16>);
+template void intersect_closest_block<16>(const Scene&, const Accel&, const RayPacket<16>*, const vmask<16>*, HitPacket<16>*, int);
+template void intersect_any_block<16>(const Scene&, const Accel&, const RayPacket<16>*, const vmask<16>*, vmask<16>*, int);
 template SurfacePacket<16> surface_at<16>(const Scene&, const RayPacket<16>&, const HitPacket<16>&,
                                           vmask<16>);
 #endif

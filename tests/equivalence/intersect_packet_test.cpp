@@ -160,6 +160,55 @@ size_t any_mismatches(const Loaded& l, const std::vector<Ray>& rays,
     return bad;
 }
 
+/// The same through intersect_closest_block / intersect_any_block, max_block_rays rays a block.
+template <int W>
+size_t closest_block_mismatches(const Loaded& l, const std::vector<Ray>& rays,
+                                const std::vector<Hit>& want) {
+    constexpr int per_block = max_block_rays / W;
+    std::atomic<size_t> bad{0};
+    const size_t packets = (rays.size() + W - 1) / W;
+    tbb::parallel_for(size_t(0), (packets + per_block - 1) / per_block, [&](size_t b) {
+        RayPacket<W> p[per_block];
+        vmask<W> active[per_block];
+        HitPacket<W> got[per_block];
+        int count = 0;
+        for (size_t k = b * per_block; k < std::min(packets, (b + 1) * per_block); ++k, ++count)
+            p[count] = make_packet<W>(rays, k * W, active[count]);
+        intersect_closest_block(l.scene, l.accel, p, active, got, count);
+        for (int c = 0; c < count; ++c) {
+            const size_t k = b * per_block + size_t(c);
+            for (int i = 0; i < W && k * W + i < rays.size(); ++i) {
+                const Hit g = get_hit(got[c], i), w = want[k * W + i];
+                if (g.object != w.object || g.prim != w.prim || (w.hit() && g.t != w.t)) ++bad;
+            }
+        }
+    });
+    return bad;
+}
+
+template <int W>
+size_t any_block_mismatches(const Loaded& l, const std::vector<Ray>& rays,
+                            const std::vector<uint8_t>& want) {
+    constexpr int per_block = max_block_rays / W;
+    std::atomic<size_t> bad{0};
+    const size_t packets = (rays.size() + W - 1) / W;
+    tbb::parallel_for(size_t(0), (packets + per_block - 1) / per_block, [&](size_t b) {
+        RayPacket<W> p[per_block];
+        vmask<W> active[per_block], got[per_block];
+        int count = 0;
+        for (size_t k = b * per_block; k < std::min(packets, (b + 1) * per_block); ++k, ++count)
+            p[count] = make_packet<W>(rays, k * W, active[count]);
+        intersect_any_block(l.scene, l.accel, p, active, got, count);
+        for (int c = 0; c < count; ++c) {
+            const size_t k = b * per_block + size_t(c);
+            const uint32_t g = bits(got[c]);
+            for (int i = 0; i < W && k * W + i < rays.size(); ++i)
+                if (((g >> i) & 1u) != want[k * W + i]) ++bad;
+        }
+    });
+    return bad;
+}
+
 template <class T>
 class IntersectPacket : public ::testing::Test {};
 struct WidthName {
@@ -210,6 +259,21 @@ TYPED_TEST(IntersectPacket, MatchesScalarOnEveryAnalyticShape) {
     check_scene("builtin", closest_mismatches<W>, any_mismatches<W>);
 }
 
+TYPED_TEST(IntersectPacket, BlocksMatchScalarOnTheDragon) {
+    constexpr int W = TypeParam::value;
+    check_scene("dragon", closest_block_mismatches<W>, any_block_mismatches<W>);
+}
+
+TYPED_TEST(IntersectPacket, BlocksMatchScalarOnTheBunny) {
+    constexpr int W = TypeParam::value;
+    check_scene("bunny", closest_block_mismatches<W>, any_block_mismatches<W>);
+}
+
+TYPED_TEST(IntersectPacket, BlocksMatchScalarOnEveryAnalyticShape) {
+    constexpr int W = TypeParam::value;
+    check_scene("builtin", closest_block_mismatches<W>, any_block_mismatches<W>);
+}
+
 TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
     constexpr int W = TypeParam::value;
     const std::shared_ptr<Loaded> l = load("builtin");
@@ -238,6 +302,8 @@ TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
     }
     EXPECT_EQ(closest_mismatches<W>(*l, rays, want), 0u);
     EXPECT_EQ(any_mismatches<W>(*l, rays, blocked), 0u);
+    EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want), 0u);
+    EXPECT_EQ(any_block_mismatches<W>(*l, rays, blocked), 0u);
 }
 
 TYPED_TEST(IntersectPacket, NoActiveLanesMeansNoHits) {

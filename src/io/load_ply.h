@@ -1,0 +1,40 @@
+// io: Stanford PLY meshes -> scene/scene.h Mesh. Sibling of load_obj.h; load_mesh.h picks one.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "scene/scene.h"
+
+namespace raylane {
+
+/// Reads a PLY 1.0 file: `ascii`, `binary_little_endian` or `binary_big_endian`.
+///
+/// Header lines: format, element, property, comment, obj_info, end_header (blank lines are
+/// skipped). Property types: char uchar short ushort int uint float double and their sized
+/// names int8 ... float64.
+/// - Element `vertex`: x y z (required), nx ny nz (optional, all three), uvs from the first of
+///   the pairs (u v), (s t), (texture_u texture_v), (texture_s texture_t); any numeric type,
+///   any order. Other properties are skipped.
+/// - Element `face`: a list property `vertex_indices` (or `vertex_index`) with integer count
+///   and item types; polygons are split into a fan. Other properties are skipped.
+/// - Other elements, before or after, are skipped (list properties included).
+/// normal_tris and uv_tris equal tris when the vertices carry normals / uvs.
+///
+/// ASCII bodies hold one record per line (blank lines skipped); binary bytes after the last
+/// element are ignored. Every element count is checked against the bytes left before
+/// anything is allocated for it.
+///
+/// Errors (InputError "file:line: reason" in the header and in ASCII bodies, "file: byte N:
+/// reason" in binary bodies): missing magic, unknown header line, unsupported format or
+/// version, missing x/y/z or vertex_indices, counts the file cannot hold, truncated body,
+/// too few or too many values on an ASCII line, bad or out-of-range numbers, NaN or infinite
+/// vertex attributes, negative list count, face with fewer than 3 vertices, vertex index out
+/// of range, a file without faces.
+Mesh load_ply(const std::string& path);
+
+/// Same as load_ply on bytes already in memory; `name_for_errors` prefixes messages and gives
+/// the mesh its name.
+Mesh load_ply_from_memory(std::string_view bytes, const std::string& name_for_errors);
+
+}  // namespace raylane

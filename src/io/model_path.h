@@ -1,0 +1,20 @@
+// io: where model files (meshes named by scenes) are looked up. Used by io/load_scene.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace raylane {
+
+/// The folders find_model searches for a relative name, in order, without duplicates:
+/// `scene_dir` ("." when empty); each non-empty entry of RAYLANE_MODEL_PATH (':'-separated);
+/// RAYLANE_SOURCE_DIR "/../shared/models" (the checkout's sibling); and "../shared/models"
+/// under the current working directory.
+std::vector<std::string> model_search_dirs(const std::string& scene_dir);
+
+/// The path of the model file `name`: `name` itself when absolute, else the first of
+/// model_search_dirs(scene_dir) that holds it as a regular file. When not found, throws
+/// InputError with one line naming the model, every folder searched, and where to get it.
+std::string find_model(const std::string& name, const std::string& scene_dir);
+
+}  // namespace raylane

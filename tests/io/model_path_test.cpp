@@ -1,0 +1,149 @@
+// tests for io/model_path.cpp: search order, RAYLANE_MODEL_PATH, the checkout fallback and the
+// not-found message.
+#include "io/model_path.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+
+namespace raylane {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Sets (or unsets) RAYLANE_MODEL_PATH for one test and restores the old value.
+struct ModelPathEnv {
+    std::optional<std::string> saved;
+    explicit ModelPathEnv(const char* value) {
+        if (const char* old = std::getenv("RAYLANE_MODEL_PATH")) saved = old;
+        if (value) {
+            ::setenv("RAYLANE_MODEL_PATH", value, 1);
+        } else {
+            ::unsetenv("RAYLANE_MODEL_PATH");
+        }
+    }
+    ~ModelPathEnv() {
+        if (saved) {
+            ::setenv("RAYLANE_MODEL_PATH", saved->c_str(), 1);
+        } else {
+            ::unsetenv("RAYLANE_MODEL_PATH");
+        }
+    }
+};
+
+/// A fresh temporary folder with sub-folders a, b, c; removed at the end of the test.
+struct TempDirs {
+    fs::path root;
+    TempDirs() {
+        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+        root = fs::temp_directory_path() /
+               ("raylane_model_path_" + std::to_string(::getpid()) + "_" + test->name());
+        fs::remove_all(root);
+        for (const char* sub : {"a", "b", "c"}) fs::create_directories(root / sub);
+    }
+    ~TempDirs() { fs::remove_all(root); }
+    std::string dir(const char* sub) const { return (root / sub).string(); }
+    std::string touch(const char* sub, const char* name) const {
+        fs::path file = root / sub / name;
+        std::ofstream(file) << "v 0 0 0\n";
+        return file.string();
+    }
+};
+
+TEST(FindModel, ReturnsAnAbsoluteNameThatExists) {
+    TempDirs dirs;
+    const std::string file = dirs.touch("c", "abs.obj");
+    EXPECT_EQ(find_model(file, dirs.dir("a")), file);
+}
+
+TEST(FindModel, LooksInTheSceneFolderFirst) {
+    TempDirs dirs;
+    const std::string in_scene = dirs.touch("a", "m.obj");
+    dirs.touch("b", "m.obj");
+    ModelPathEnv env(dirs.dir("b").c_str());
+    EXPECT_EQ(find_model("m.obj", dirs.dir("a")), in_scene);
+}
+
+TEST(FindModel, SearchesModelPathFoldersInOrder) {
+    TempDirs dirs;
+    const std::string in_c = dirs.touch("c", "m.ply");
+    {
+        ModelPathEnv env((dirs.dir("b") + "::" + dirs.dir("c")).c_str());
+        EXPECT_EQ(find_model("m.ply", dirs.dir("a")), in_c);
+    }
+    const std::string in_b = dirs.touch("b", "m.ply");
+    ModelPathEnv env((dirs.dir("b") + ":" + dirs.dir("c")).c_str());
+    EXPECT_EQ(find_model("m.ply", dirs.dir("a")), in_b);
+}
+
+TEST(FindModel, FindsNamesWithSubfolders) {
+    TempDirs dirs;
+    fs::create_directories(dirs.root / "b" / "apple");
+    const std::string file = (dirs.root / "b" / "apple" / "x.obj").string();
+    std::ofstream(file) << "\n";
+    ModelPathEnv env(dirs.dir("b").c_str());
+    EXPECT_EQ(find_model("apple/x.obj", dirs.dir("a")), file);
+}
+
+TEST(FindModel, ListsSearchFoldersInTheDocumentedOrder) {
+    TempDirs dirs;
+    ModelPathEnv env((dirs.dir("b") + ":" + dirs.dir("c") + ":" + dirs.dir("b")).c_str());
+    std::vector<std::string> got = model_search_dirs(dirs.dir("a"));
+    ASSERT_GE(got.size(), 4u);
+    EXPECT_EQ(got[0], dirs.dir("a"));
+    EXPECT_EQ(got[1], dirs.dir("b"));
+    EXPECT_EQ(got[2], dirs.dir("c"));  // the repeated b is listed once
+    EXPECT_EQ(got[3], fs::path(RAYLANE_SOURCE_DIR "/../shared/models").lexically_normal().string());
+    EXPECT_EQ(model_search_dirs("")[0], ".");
+}
+
+TEST(FindModel, FallsBackToTheSharedModelsNextToTheCheckout) {
+    const fs::path shared = fs::path(RAYLANE_SOURCE_DIR "/../shared/models/dragon.ply");
+    if (!fs::exists(shared)) GTEST_SKIP() << shared << " not present";
+    TempDirs dirs;
+    ModelPathEnv env(nullptr);
+    std::string found = find_model("dragon.ply", dirs.dir("a"));
+    EXPECT_TRUE(fs::equivalent(found, shared)) << found;
+}
+
+TEST(FindModel, NamesTheModelEveryFolderAndWhereToGetItWhenMissing) {
+    TempDirs dirs;
+    ModelPathEnv env((dirs.dir("b") + ":" + dirs.dir("c")).c_str());
+    std::string message;
+    try {
+        find_model("no_such_model.ply", dirs.dir("a"));
+        ADD_FAILURE() << "no InputError thrown";
+    } catch (const InputError& e) {
+        message = e.what();
+    }
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    for (const std::string& part :
+         {std::string("no_such_model.ply"), dirs.dir("a"), dirs.dir("b"), dirs.dir("c"),
+          std::string("shared/models"), std::string("Stanford 3D Scanning Repository"),
+          std::string("RAYLANE_MODEL_PATH")}) {
+        EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+    }
+}
+
+TEST(FindModel, RejectsAMissingAbsolutePathAndAnEmptyName) {
+    EXPECT_THROW(find_model("/nonexistent/raylane/m.obj", "."), InputError);
+    EXPECT_THROW(find_model("", "."), InputError);
+}
+
+TEST(FindModel, IgnoresFoldersWithTheModelName) {
+    TempDirs dirs;
+    fs::create_directories(dirs.root / "a" / "m.obj");  // a folder, not a file
+    const std::string file = dirs.touch("b", "m.obj");
+    ModelPathEnv env(dirs.dir("b").c_str());
+    EXPECT_EQ(find_model("m.obj", dirs.dir("a")), file);
+}
+
+}  // namespace
+}  // namespace raylane
