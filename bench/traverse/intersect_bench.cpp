@@ -115,7 +115,7 @@ Workload* workload(const std::string& name) {
         }
         const float u1 = uni(rng), u2 = uni(rng), rad = std::sqrt(u1), phi = 6.2831853f * u2;
         const vec3 t = glm::normalize(std::fabs(n.x) > 0.5f ? glm::cross(n, vec3(0, 1, 0))
-                                                           : glm::cross(n, vec3(1, 0, 0)));
+                                                            : glm::cross(n, vec3(1, 0, 0)));
         const vec3 b = glm::cross(n, t);
         w->bounce.push_back({o,
                              rad * std::cos(phi) * t + rad * std::sin(phi) * b +
@@ -172,7 +172,8 @@ void bench_packet(benchmark::State& state, std::string scene, std::string set, i
     run(state, rays, threads, [&](size_t first, size_t last) {
         for (size_t i = first; i < last; i += W) {
             vmask<W> active;
-            const RayPacket<W> p = load_rays<W>(&rays[i], int(std::min<size_t>(W, last - i)), active);
+            const RayPacket<W> p =
+                load_rays<W>(&rays[i], int(std::min<size_t>(W, last - i)), active);
             if (any_hit) {
                 benchmark::DoNotOptimize(intersect_any(w->scene, w->accel, p, active));
             } else {
@@ -199,7 +200,8 @@ void bench_block(benchmark::State& state, std::string scene, std::string set, in
         for (size_t b = first; b < last; b += max_block_rays) {
             int count = 0;
             for (size_t i = b; i < std::min(last, b + max_block_rays); i += W, ++count)
-                p[count] = load_rays<W>(&rays[i], int(std::min<size_t>(W, last - i)), active[count]);
+                p[count] =
+                    load_rays<W>(&rays[i], int(std::min<size_t>(W, last - i)), active[count]);
             if (any_hit) {
                 intersect_any_block(w->scene, w->accel, p, active, occluded, count);
                 benchmark::DoNotOptimize(occluded[0]);
@@ -224,8 +226,8 @@ void bench_embree1(benchmark::State& state, std::string scene, std::string set, 
         for (size_t i = first; i < last; ++i) {
             const Ray& r = rays[i];
             RTCRayHit rh{};
-            rh.ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y, r.dir.z, 0.0f,
-                      r.t_max, ~0u, 0u, 0u};
+            rh.ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y,
+                      r.dir.z, 0.0f,    r.t_max, ~0u,     0u,      0u};
             rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             if (any_hit) {
                 rtcOccluded1(w->rtc_scene, &ctx, &rh.ray);
@@ -254,8 +256,8 @@ void bench_embree16(benchmark::State& state, std::string scene, std::string set,
             const size_t n = last - first;
             for (size_t k = 0; k < n; ++k) {
                 const Ray& r = rays[first + k];
-                rh[k].ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y, r.dir.z, 0.0f,
-                             r.t_max, ~0u, 0u, 0u};
+                rh[k].ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y,
+                             r.dir.z, 0.0f,    r.t_max, ~0u,     0u,      0u};
                 rh[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
             }
             rtcIntersect1M(w->rtc_scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
@@ -308,8 +310,8 @@ void register_all() {
             for (int threads : {1, 2}) {
                 const std::string suffix =
                     "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
-                benchmark::RegisterBenchmark(("BM_Intersect_Scalar" + suffix).c_str(),
-                                             bench_scalar, scene, set, threads)
+                benchmark::RegisterBenchmark(("BM_Intersect_Scalar" + suffix).c_str(), bench_scalar,
+                                             scene, set, threads)
                     ->Unit(benchmark::kMillisecond)
                     ->UseRealTime();
                 register_packet<1>(scene, set, threads);

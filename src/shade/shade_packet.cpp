@@ -46,78 +46,98 @@ MaterialPacket<W> gather_materials(const Scene& scene, const vint<W>& ids, vmask
 }  // namespace
 
 template <int W>
-Vec3<W> shade_hit(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
-                  const HitPacket<W>& hits, vmask<W> active, ShadeCounts& counts) {
-    const SurfacePacket<W> sp = surface_at(scene, rays, hits, active);
-    const MaterialPacket<W> m = gather_materials<W>(scene, sp.material, active);
+void shade_hit(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+               const HitPacket<W>* hits, const vmask<W>* active, int count, Vec3<W>* color,
+               ShadeCounts& counts) {
+    constexpr int max_packets = max_block_rays / W;
+    Vec3<W> ng[max_packets], ns[max_packets], mirror[max_packets], origin[max_packets];
+    MaterialPacket<W> m[max_packets];
     const vfloat<W> zero(0.0f);
-    // face the viewer
-    Vec3<W> ng = sp.geometric_normal, ns = sp.shading_normal;
-    ng = select(dot(ng, rays.dir) > zero, -ng, ng);
-    ns = select(dot(ns, ng) < zero, -ns, ns);
-    const Vec3<W> view = rays.dir / sqrt(dot(rays.dir, rays.dir));
-    const Vec3<W> mirror = view - (vfloat<W>(2.0f) * dot(view, ns)) * ns;
-    const Vec3<W> origin = offset_ray_origin(sp.position, ng);
+    for (int p = 0; p < count; ++p) {
+        if (none(active[p])) continue;
+        const SurfacePacket<W> sp = surface_at(scene, rays[p], hits[p], active[p]);
+        m[p] = gather_materials<W>(scene, sp.material, active[p]);
+        // face the viewer
+        ng[p] = select(dot(sp.geometric_normal, rays[p].dir) > zero, -sp.geometric_normal,
+                       sp.geometric_normal);
+        ns[p] = select(dot(sp.shading_normal, ng[p]) < zero, -sp.shading_normal, sp.shading_normal);
+        const Vec3<W> view = rays[p].dir / sqrt(dot(rays[p].dir, rays[p].dir));
+        mirror[p] = view - (vfloat<W>(2.0f) * dot(view, ns[p])) * ns[p];
+        origin[p] = offset_ray_origin(sp.position, ng[p]);
+        color[p] = m[p].k_a * m[p].c_d;
+    }
 
-    Vec3<W> color = m.k_a * m.c_d;
     for (const Light& light : scene.lights) {
-        // light direction and factor
-        Vec3<W> to_light;
-        vfloat<W> factor, t_max;
-        vmask<W> lit = active;
-        if (light.kind == LightKind::point) {
-            to_light = make_vec3<W>(light.position.x, light.position.y, light.position.z) - origin;
-            const vfloat<W> d2 = dot(to_light, to_light);
-            lit = mask_and(lit, d2 > zero);
-            factor = vfloat<W>(light.intensity) / d2;
-            const vfloat<W> d = sqrt(d2);
-            to_light = to_light / d;
-            t_max = d;
-        } else {
-            to_light = make_vec3<W>(light.direction.x, light.direction.y, light.direction.z);
-            factor = vfloat<W>(light.intensity);
-            t_max = vfloat<W>(infinity);
+        RayPacket<W> shadow[max_packets];
+        vmask<W> lit[max_packets], occluded[max_packets];
+        vfloat<W> factor[max_packets], cos_theta[max_packets];
+        bool any_lit = false;
+        for (int p = 0; p < count; ++p) {
+            // light direction and factor
+            Vec3<W> to_light;
+            vfloat<W> t_max;
+            lit[p] = active[p];
+            if (light.kind == LightKind::point) {
+                to_light =
+                    make_vec3<W>(light.position.x, light.position.y, light.position.z) - origin[p];
+                const vfloat<W> d2 = dot(to_light, to_light);
+                lit[p] = mask_and(lit[p], d2 > zero);
+                factor[p] = vfloat<W>(light.intensity) / d2;
+                const vfloat<W> d = sqrt(d2);
+                to_light = to_light / d;
+                t_max = d;
+            } else {
+                to_light = make_vec3<W>(light.direction.x, light.direction.y, light.direction.z);
+                factor[p] = vfloat<W>(light.intensity);
+                t_max = vfloat<W>(infinity);
+            }
+            cos_theta[p] = dot(ns[p], to_light);
+            lit[p] = mask_and(lit[p], mask_and(cos_theta[p] > zero, dot(ng[p], to_light) > zero));
+            shadow[p].org = origin[p];
+            shadow[p].dir = to_light;
+            shadow[p].t_min = zero;
+            shadow[p].t_max = select(lit[p], t_max, vfloat<W>(-1.0f));
+            any_lit = any_lit || any(lit[p]);
         }
-        const vfloat<W> cos_theta = dot(ns, to_light);
-        lit = mask_and(lit, mask_and(cos_theta > zero, dot(ng, to_light) > zero));
-        if (none(lit)) continue;
+        if (!any_lit) continue;
         // shadow
         if (light.shadows) {
-            counts.shadow_rays += static_cast<uint64_t>(count(lit));
-            RayPacket<W> shadow;
-            shadow.org = origin;
-            shadow.dir = to_light;
-            shadow.t_min = zero;
-            shadow.t_max = select(lit, t_max, vfloat<W>(-1.0f));
-            lit = mask_andnot(lit, intersect_any(scene, accel, shadow, lit));
-            if (none(lit)) continue;
+            for (int p = 0; p < count; ++p)
+                counts.shadow_rays += static_cast<uint64_t>(raylane::count(lit[p]));
+            intersect_any_block(scene, accel, shadow, lit, occluded, count);
+            for (int p = 0; p < count; ++p) lit[p] = mask_andnot(lit[p], occluded[p]);
         }
         // diffuse + Phong
-        const Vec3<W> radiance = make_vec3<W>(light.color.x, light.color.y, light.color.z) * factor;
-        color = select(lit, color + ((m.k_d * cos_theta) * radiance) * m.c_d, color);
-        const vfloat<W> cos_alpha = dot(to_light, mirror);
-        const vmask<W> spec = mask_and(mask_and(lit, m.k_s > zero), cos_alpha > zero);
-        if (any(spec)) {
-            const vfloat<W> p = pow(select(spec, cos_alpha, vfloat<W>(1.0f)), m.exponent);
-            color = select(spec, color + ((m.k_s * p) * radiance) * m.c_s, color);
+        const Vec3<W> light_color = make_vec3<W>(light.color.x, light.color.y, light.color.z);
+        for (int p = 0; p < count; ++p) {
+            if (none(lit[p])) continue;
+            const Vec3<W> radiance = light_color * factor[p];
+            color[p] = select(lit[p], color[p] + ((m[p].k_d * cos_theta[p]) * radiance) * m[p].c_d,
+                              color[p]);
+            const vfloat<W> cos_alpha = dot(shadow[p].dir, mirror[p]);
+            const vmask<W> spec = mask_and(mask_and(lit[p], m[p].k_s > zero), cos_alpha > zero);
+            if (any(spec)) {
+                const vfloat<W> pw = pow(select(spec, cos_alpha, vfloat<W>(1.0f)), m[p].exponent);
+                color[p] =
+                    select(spec, color[p] + ((m[p].k_s * pw) * radiance) * m[p].c_s, color[p]);
+            }
         }
     }
-    return color;
 }
 
-template Vec3<1> shade_hit<1>(const Scene&, const Accel&, const RayPacket<1>&, const HitPacket<1>&,
-                              vmask<1>, ShadeCounts&);
+template void shade_hit<1>(const Scene&, const Accel&, const RayPacket<1>*, const HitPacket<1>*,
+                           const vmask<1>*, int, Vec3<1>*, ShadeCounts&);
 #if XSIMD_WITH_SSE2
-template Vec3<4> shade_hit<4>(const Scene&, const Accel&, const RayPacket<4>&, const HitPacket<4>&,
-                              vmask<4>, ShadeCounts&);
+template void shade_hit<4>(const Scene&, const Accel&, const RayPacket<4>*, const HitPacket<4>*,
+                           const vmask<4>*, int, Vec3<4>*, ShadeCounts&);
 #endif
 #if XSIMD_WITH_AVX2
-template Vec3<8> shade_hit<8>(const Scene&, const Accel&, const RayPacket<8>&, const HitPacket<8>&,
-                              vmask<8>, ShadeCounts&);
+template void shade_hit<8>(const Scene&, const Accel&, const RayPacket<8>*, const HitPacket<8>*,
+                           const vmask<8>*, int, Vec3<8>*, ShadeCounts&);
 #endif
 #if XSIMD_WITH_AVX512F
-template Vec3<16> shade_hit<16>(const Scene&, const Accel&, const RayPacket<16>&,
-                                const HitPacket<16>&, vmask<16>, ShadeCounts&);
+template void shade_hit<16>(const Scene&, const Accel&, const RayPacket<16>*, const HitPacket<16>*,
+                            const vmask<16>*, int, Vec3<16>*, ShadeCounts&);
 #endif
 
 }  // namespace raylane

@@ -11,10 +11,12 @@
 
 namespace raylane {
 
-/// Radiance towards the ray origins for the active lanes (all must be hits); the formula of
-/// shade_hit, lane by lane. Shadow rays are traced as packets and counted in `counts`.
+/// Radiance towards the ray origins of a block of packets, for the active lanes (all must be
+/// hits): the formula of shade_hit, lane by lane. Per light, the block's shadow rays are traced
+/// together (intersect_any_block) and counted in `counts`. count * W <= max_block_rays.
 template <int W>
-Vec3<W> shade_hit(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
-                  const HitPacket<W>& hits, vmask<W> active, ShadeCounts& counts);
+void shade_hit(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+               const HitPacket<W>* hits, const vmask<W>* active, int count, Vec3<W>* color,
+               ShadeCounts& counts);
 
 }  // namespace raylane

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "simd/bits.h"
 #include "traverse/box_scalar.h"
 #include "traverse/cylinder_scalar.h"
-#include "simd/bits.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/plane_scalar.h"
 #include "traverse/slab_packet.h"
@@ -26,8 +26,8 @@ vfloat<W> next_float_up(const vfloat<W>& x) {
         const vfloat<W> up = as_float(b + vint<W>(1)), down = as_float(b - vint<W>(1));
         const vfloat<W> zero(0.0f);
         vfloat<W> out = select(x > zero, up, select(x < zero, down, x));
-        out = select(x == zero, as_float(vint<W>(1)), out);   // +-0 -> smallest denormal
-        return select(x == vfloat<W>(infinity), x, out);      // +inf stays, NaN stays
+        out = select(x == zero, as_float(vint<W>(1)), out);  // +-0 -> smallest denormal
+        return select(x == vfloat<W>(infinity), x, out);     // +inf stays, NaN stays
     }
 }
 
@@ -422,7 +422,6 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
     return sp;
 }
 
-
 // ---- blocks of packets ------------------------------------------------------------------------
 
 namespace {
@@ -590,9 +589,8 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
                         for (uint32_t j = leaf.index; j < leaf.index + leaf.count; ++j) {
                             const TriangleVerts& tv = mesh.verts[j];
                             vfloat<W> t(infinity), u(0.0f), v(0.0f);
-                            const vmask<W> h = intersect_triangle(wr[p], tv.a, tv.b, tv.c,
-                                                                  rays[p].t_min, limit[p], t, u,
-                                                                  v, m);
+                            const vmask<W> h = intersect_triangle(
+                                wr[p], tv.a, tv.b, tv.c, rays[p].t_min, limit[p], t, u, v, m);
                             if (any(h)) {
                                 const uint32_t prim = mesh.bvh.prim_ids[j];
                                 record(hits[p], better(t, object_index, prim, hits[p], h), t,
@@ -617,8 +615,8 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
         for (uint32_t object : accel.unbounded) {
             const vmask<W> lanes = mask_andnot(active[p], occluded[p]);
             if (any(lanes))
-                occluded[p] =
-                    mask_or(occluded[p], intersect_object_any(scene, accel, object, rays[p], lanes));
+                occluded[p] = mask_or(occluded[p],
+                                      intersect_object_any(scene, accel, object, rays[p], lanes));
         }
         open[p] = mask_andnot(active[p], occluded[p]);
     }
@@ -640,8 +638,8 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                 for (int p = f; p <= l; ++p) {
                     const vmask<W> m = test(p, top_leaf);
                     if (none(m)) continue;
-                    occluded[p] = mask_or(occluded[p],
-                                          intersect_object_any(scene, accel, object_index, rays[p], m));
+                    occluded[p] = mask_or(
+                        occluded[p], intersect_object_any(scene, accel, object_index, rays[p], m));
                     open[p] = mask_andnot(active[p], occluded[p]);
                 }
                 continue;
@@ -662,9 +660,8 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                             if (none(m)) break;
                             const TriangleVerts& tv = mesh.verts[j];
                             vfloat<W> t(infinity), u(0.0f), v(0.0f);
-                            const vmask<W> h = intersect_triangle(wr[p], tv.a, tv.b, tv.c,
-                                                                  rays[p].t_min, rays[p].t_max, t,
-                                                                  u, v, m);
+                            const vmask<W> h = intersect_triangle(
+                                wr[p], tv.a, tv.b, tv.c, rays[p].t_min, rays[p].t_max, t, u, v, m);
                             occluded[p] = mask_or(occluded[p], h);
                             open[p] = mask_andnot(active[p], occluded[p]);
                         }
@@ -679,8 +676,10 @@ template vfloat<1> next_float_up<1>(const vfloat<1>&);
 template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const RayPacket<1>&,
                                            vmask<1>, vint<1>*);
 template vmask<1> intersect_any<1>(const Scene&, const Accel&, const RayPacket<1>&, vmask<1>);
-template void intersect_closest_block<1>(const Scene&, const Accel&, const RayPacket<1>*, const vmask<1>*, HitPacket<1>*, int);
-template void intersect_any_block<1>(const Scene&, const Accel&, const RayPacket<1>*, const vmask<1>*, vmask<1>*, int);
+template void intersect_closest_block<1>(const Scene&, const Accel&, const RayPacket<1>*,
+                                         const vmask<1>*, HitPacket<1>*, int);
+template void intersect_any_block<1>(const Scene&, const Accel&, const RayPacket<1>*,
+                                     const vmask<1>*, vmask<1>*, int);
 template SurfacePacket<1> surface_at<1>(const Scene&, const RayPacket<1>&, const HitPacket<1>&,
                                         vmask<1>);
 #if XSIMD_WITH_SSE2
@@ -688,8 +687,10 @@ template vfloat<4> next_float_up<4>(const vfloat<4>&);
 template HitPacket<4> intersect_closest<4>(const Scene&, const Accel&, const RayPacket<4>&,
                                            vmask<4>, vint<4>*);
 template vmask<4> intersect_any<4>(const Scene&, const Accel&, const RayPacket<4>&, vmask<4>);
-template void intersect_closest_block<4>(const Scene&, const Accel&, const RayPacket<4>*, const vmask<4>*, HitPacket<4>*, int);
-template void intersect_any_block<4>(const Scene&, const Accel&, const RayPacket<4>*, const vmask<4>*, vmask<4>*, int);
+template void intersect_closest_block<4>(const Scene&, const Accel&, const RayPacket<4>*,
+                                         const vmask<4>*, HitPacket<4>*, int);
+template void intersect_any_block<4>(const Scene&, const Accel&, const RayPacket<4>*,
+                                     const vmask<4>*, vmask<4>*, int);
 template SurfacePacket<4> surface_at<4>(const Scene&, const RayPacket<4>&, const HitPacket<4>&,
                                         vmask<4>);
 #endif
@@ -698,8 +699,10 @@ template vfloat<8> next_float_up<8>(const vfloat<8>&);
 template HitPacket<8> intersect_closest<8>(const Scene&, const Accel&, const RayPacket<8>&,
                                            vmask<8>, vint<8>*);
 template vmask<8> intersect_any<8>(const Scene&, const Accel&, const RayPacket<8>&, vmask<8>);
-template void intersect_closest_block<8>(const Scene&, const Accel&, const RayPacket<8>*, const vmask<8>*, HitPacket<8>*, int);
-template void intersect_any_block<8>(const Scene&, const Accel&, const RayPacket<8>*, const vmask<8>*, vmask<8>*, int);
+template void intersect_closest_block<8>(const Scene&, const Accel&, const RayPacket<8>*,
+                                         const vmask<8>*, HitPacket<8>*, int);
+template void intersect_any_block<8>(const Scene&, const Accel&, const RayPacket<8>*,
+                                     const vmask<8>*, vmask<8>*, int);
 template SurfacePacket<8> surface_at<8>(const Scene&, const RayPacket<8>&, const HitPacket<8>&,
                                         vmask<8>);
 #endif
@@ -708,8 +711,10 @@ template vfloat<16> next_float_up<16>(const vfloat<16>&);
 template HitPacket<16> intersect_closest<16>(const Scene&, const Accel&, const RayPacket<16>&,
                                              vmask<16>, vint<16>*);
 template vmask<16> intersect_any<16>(const Scene&, const Accel&, const RayPacket<16>&, vmask<16>);
-template void intersect_closest_block<16>(const Scene&, const Accel&, const RayPacket<16>*, const vmask<16>*, HitPacket<16>*, int);
-template void intersect_any_block<16>(const Scene&, const Accel&, const RayPacket<16>*, const vmask<16>*, vmask<16>*, int);
+template void intersect_closest_block<16>(const Scene&, const Accel&, const RayPacket<16>*,
+                                          const vmask<16>*, HitPacket<16>*, int);
+template void intersect_any_block<16>(const Scene&, const Accel&, const RayPacket<16>*,
+                                      const vmask<16>*, vmask<16>*, int);
 template SurfacePacket<16> surface_at<16>(const Scene&, const RayPacket<16>&, const HitPacket<16>&,
                                           vmask<16>);
 #endif
