@@ -1,0 +1,119 @@
+// Tests of the `raylane` command line: exit codes, one-line errors, outputs.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+struct CliRun {
+    int code = -1;
+    std::string out, err;
+};
+
+/// Runs the raylane binary with `args` (a shell fragment), capturing stdout and stderr.
+CliRun run(const std::string& args) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path();
+    const std::string out = (dir / "raylane_cli_out.txt").string();
+    const std::string err = (dir / "raylane_cli_err.txt").string();
+    const std::string cmd = std::string(RAYLANE_BINARY) + " " + args + " >" + out + " 2>" + err;
+    const int status = std::system(cmd.c_str());
+    CliRun r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    auto slurp = [](const std::string& path) {
+        std::ifstream f(path);
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    };
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+}
+
+std::string temp_file(const std::string& name, const std::string& text) {
+    const std::string path = (std::filesystem::temp_directory_path() / name).string();
+    std::ofstream(path) << text;
+    return path;
+}
+
+size_t lines(const std::string& s) {
+    size_t n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+TEST(Cli, HelpWorksForEveryCommand) {
+    for (const char* cmd : {"--help", "render --help", "info --help", "compare --help"}) {
+        const CliRun r = run(cmd);
+        EXPECT_EQ(r.code, 0) << cmd;
+        EXPECT_NE(r.out.find("Usage"), std::string::npos) << cmd;
+    }
+}
+
+TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
+    for (const char* args : {"render --spp 0", "render --aov shiny", "render --path fast",
+                             "frobnicate", "render /no/such/scene.json", "render --width -3"}) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.code, 2) << args;
+        EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
+    }
+}
+
+TEST(Cli, MalformedSceneNamesFileAndPath) {
+    const std::string scene = temp_file(
+        "raylane_bad_scene.json",
+        R"({"camera": {"position": [0,0,0], "look_at": [0,0,1], "fov_deg": 60, "resolution": [8,8]},
+            "objects": [{"shape": "sphere", "center": [0,0,3], "radius": 1, "material": "gold"}]})");
+    const CliRun r = run("render " + scene + " -o /dev/null");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("raylane_bad_scene.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("$.objects[0].material"), std::string::npos) << r.err;
+}
+
+TEST(Cli, MalformedModelNamesFileAndLine) {
+    const std::string obj =
+        temp_file("raylane_bad_model.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    const std::string scene = temp_file(
+        "raylane_bad_model_scene.json",
+        R"({"camera": {"position": [0,0,0], "look_at": [0,0,1], "fov_deg": 60, "resolution": [8,8]},
+            "objects": [{"shape": "mesh", "file": ")" +
+            obj + R"("}]})");
+    const CliRun r = run("info " + scene);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("raylane_bad_model.obj:4"), std::string::npos) << r.err;
+}
+
+TEST(Cli, RenderWritesTheImageAndReportsTiming) {
+    const std::string png =
+        (std::filesystem::temp_directory_path() / "raylane_cli_builtin.png").string();
+    std::filesystem::remove(png);
+    const CliRun r = run("render --width 64 -q -o " + png);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(png));
+    EXPECT_GT(std::filesystem::file_size(png), 100u);
+    for (const char* key : {"resolution", "rays", "load", "build", "render", "Mrays/s"})
+        EXPECT_NE(r.out.find(key), std::string::npos) << key;
+    EXPECT_FALSE(std::filesystem::exists(png + ".partial"));
+}
+
+TEST(Cli, InfoPrintsBvhStatistics) {
+    const CliRun r = run("info");
+    EXPECT_EQ(r.code, 0) << r.err;
+    for (const char* key :
+         {"objects", "triangles", "nodes", "leaves", "SAH cost", "memory", "build"})
+        EXPECT_NE(r.out.find(key), std::string::npos) << key;
+}
+
+TEST(Cli, CompareAgreesOnTheBuiltinScene) {
+    const CliRun r = run("compare --width 64");
+    EXPECT_EQ(r.code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("agree"), std::string::npos);
+    EXPECT_NE(r.out.find("PSNR"), std::string::npos);
+}
+
+}  // namespace
