@@ -34,7 +34,7 @@ uint8_t encode_channel(float linear, Encoding encoding) {
     float x = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
     if (encoding == Encoding::srgb)
         x = x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
-    return static_cast<uint8_t>(std::lround(x * 255.0f));
+    return static_cast<uint8_t>(x * 255.0f + 0.5f);  // x in [0, 1]: round half up
 }
 
 namespace {
@@ -58,6 +58,7 @@ void write_png(const std::string& path, const Film& film, Encoding encoding) {
     for (size_t i = 0; i < film.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) bytes[3 * i + c] = encode_channel(film.pixels[i][c], encoding);
     const std::string tmp = temp_name(path);
+    stbi_write_png_compression_level = 4;  // stb's default (8) costs more than the render
     if (!stbi_write_png(tmp.c_str(), film.width, film.height, 3, bytes.data(), film.width * 3))
         throw std::runtime_error(path + ": cannot write PNG");
     commit_file(tmp, path);

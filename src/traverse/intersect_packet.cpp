@@ -403,8 +403,43 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
         sp.u = select(on_mesh, tu, sp.u);
         sp.v = select(on_mesh, tv, sp.v);
     }
-    // analytic shapes: lane by lane
-    const vmask<W> analytic = mask_andnot(active, mask_from_bits<W>(mesh_bits));
+    // analytic shapes: a plane shared by all of them W lanes at a time (the floor of most
+    // scenes), anything else lane by lane through the scalar surface_at
+    vmask<W> analytic = mask_andnot(active, mask_from_bits<W>(mesh_bits));
+    if (any(analytic)) {
+        const uint32_t first = static_cast<uint32_t>(get(hits.object, first_active(analytic)));
+        const Object& object = scene.objects[first];
+        const vmask<W> same =
+            mask_and(analytic, to_float(hits.object) == vfloat<W>(static_cast<float>(first)));
+        if (object.kind == ShapeKind::plane && bits(same) == bits(analytic)) {
+            const Plane& plane = scene.planes[object.shape];
+            const RayPacket<W> r = to_object_space(object, rays);
+            const Vec3<W> p = r.org + hits.t * r.dir;
+            // geometry_plane: the frame (constant), then uv = dot(p - point, t1 / t2)
+            const PlaneFrame f = plane_frame(plane);
+            const Vec3<W> q = p - make_vec3<W>(plane.point.x, plane.point.y, plane.point.z);
+            const vfloat<W> u = dot(q, make_vec3<W>(f.t1.x, f.t1.y, f.t1.z));
+            const vfloat<W> v = dot(q, make_vec3<W>(f.t2.x, f.t2.y, f.t2.z));
+            vec3 n = f.n;
+            Vec3<W> position = p;
+            if (object.has_transform) {
+                const mat4& m = object.world_from_object;
+                auto row = [&](int k) {
+                    return (vfloat<W>(m[0][k]) * p.x + vfloat<W>(m[1][k]) * p.y) +
+                           (vfloat<W>(m[2][k]) * p.z + vfloat<W>(m[3][k]));
+                };
+                position = {row(0), row(1), row(2)};
+                n = glm::normalize(glm::transpose(glm::mat3(object.object_from_world)) * n);
+            }
+            const Vec3<W> nw = make_vec3<W>(n.x, n.y, n.z);
+            sp.position = select(analytic, position, sp.position);
+            sp.geometric_normal = select(analytic, nw, sp.geometric_normal);
+            sp.shading_normal = select(analytic, nw, sp.shading_normal);
+            sp.u = select(analytic, u, sp.u);
+            sp.v = select(analytic, v, sp.v);
+            analytic = mask_andnot(analytic, same);
+        }
+    }
     for_each_active(analytic, [&](int i) {
         const SurfacePoint s = surface_at(scene, get_ray(rays, i), get_hit(hits, i));
         set(sp.position.x, i, s.position.x);

@@ -24,20 +24,29 @@ inline float intersect_plane(const Plane& p, const Ray& ray) {
 /// share it); uv are the coordinates of p_hit - point in the tangent frame (t1, t2) of
 /// Duff, Burgess, Christensen, Hery, Kensler, Liani, Villemin, "Building an Orthonormal Basis,
 /// Revisited", JCGT 2017 (a fixed frame for each normal, accurate for every normal).
-inline LocalGeometry geometry_plane(const Plane& p, vec3 p_hit) {
-    // frame
+/// The plane's unit normal and tangent frame (t1, t2, n): Duff et al., "Building an
+/// Orthonormal Basis, Revisited", JCGT 2017. Shared by both paths' uv.
+struct PlaneFrame {
+    vec3 n, t1, t2;
+};
+inline PlaneFrame plane_frame(const Plane& p) {
     const vec3 n = glm::normalize(p.normal);
     const float sign = std::copysign(1.0f, n.z);
     const float a = -1.0f / (sign + n.z);
     const float b = n.x * n.y * a;
-    const vec3 t1(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    const vec3 t2(b, sign + n.y * n.y * a, -n.y);
+    return {n, vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x),
+            vec3(b, sign + n.y * n.y * a, -n.y)};
+}
+
+inline LocalGeometry geometry_plane(const Plane& p, vec3 p_hit) {
+    // frame
+    const PlaneFrame f = plane_frame(p);
 
     // coordinates
     const vec3 q = p_hit - p.point;
     LocalGeometry g;
-    g.normal = n;
-    g.uv = vec2(glm::dot(q, t1), glm::dot(q, t2));
+    g.normal = f.n;
+    g.uv = vec2(glm::dot(q, f.t1), glm::dot(q, f.t2));
     return g;
 }
 
