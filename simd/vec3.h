@@ -1,0 +1,108 @@
+// simd: Vec3<W>, three packets (x, y, z) holding W vectors in SoA form; mirrors glm::vec3 on the
+// scalar path, with the same operation order so that W = 1 matches glm bit for bit.
+#pragma once
+
+#include "simd/math.h"
+#include "simd/simd.h"
+
+namespace raylane {
+
+/// W three-component vectors, one packet per component.
+template <int W>
+struct Vec3 {
+    vfloat<W> x = vfloat<W>(0.0f);
+    vfloat<W> y = vfloat<W>(0.0f);
+    vfloat<W> z = vfloat<W>(0.0f);
+};
+
+/// Every lane holds (x, y, z).
+template <int W>
+inline Vec3<W> make_vec3(float x, float y, float z) {
+    return {vfloat<W>(x), vfloat<W>(y), vfloat<W>(z)};
+}
+
+/// W consecutive vectors from three SoA arrays; xs, ys, zs point at the first (any alignment).
+template <int W>
+inline Vec3<W> load_vec3(const float* xs, const float* ys, const float* zs) {
+    return {load<W>(xs), load<W>(ys), load<W>(zs)};
+}
+
+/// Stores all W lanes into three SoA arrays.
+template <int W>
+inline void store_vec3(float* xs, float* ys, float* zs, const Vec3<W>& v) {
+    store(xs, v.x);
+    store(ys, v.y);
+    store(zs, v.z);
+}
+
+// Component-wise arithmetic. A float converts to vfloat<W> where a vfloat<W> is expected.
+template <int W>
+inline Vec3<W> operator+(const Vec3<W>& a, const Vec3<W>& b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <int W>
+inline Vec3<W> operator-(const Vec3<W>& a, const Vec3<W>& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <int W>
+inline Vec3<W> operator-(const Vec3<W>& a) {
+    return {neg(a.x), neg(a.y), neg(a.z)};
+}
+template <int W>
+inline Vec3<W> operator*(const Vec3<W>& a, const Vec3<W>& b) {
+    return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+template <int W>
+inline Vec3<W> operator*(const Vec3<W>& a, const vfloat<W>& s) {
+    return {a.x * s, a.y * s, a.z * s};
+}
+template <int W>
+inline Vec3<W> operator*(const vfloat<W>& s, const Vec3<W>& a) {
+    return {s * a.x, s * a.y, s * a.z};
+}
+template <int W>
+inline Vec3<W> operator/(const Vec3<W>& a, const vfloat<W>& s) {
+    return {a.x / s, a.y / s, a.z / s};
+}
+
+/// (a.x b.x + a.y b.y) + a.z b.z, the order glm::dot uses (no FMA).
+template <int W>
+inline vfloat<W> dot(const Vec3<W>& a, const Vec3<W>& b) {
+    return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
+
+/// a x b, written as glm::cross is.
+template <int W>
+inline Vec3<W> cross(const Vec3<W>& a, const Vec3<W>& b) {
+    return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
+}
+
+/// sqrt(dot(a, a)).
+template <int W>
+inline vfloat<W> length(const Vec3<W>& a) {
+    return sqrt(dot(a, a));
+}
+
+/// a * (1 / length(a)), as glm::normalize. A zero vector gives NaN lanes (0 * inf).
+template <int W>
+inline Vec3<W> normalize(const Vec3<W>& a) {
+    return a * (vfloat<W>(1.0f) / sqrt(dot(a, a)));
+}
+
+/// Component-wise min and max with the NaN order of min / max in simd.h (b when a or b is NaN).
+template <int W>
+inline Vec3<W> min(const Vec3<W>& a, const Vec3<W>& b) {
+    return {min(a.x, b.x), min(a.y, b.y), min(a.z, b.z)};
+}
+template <int W>
+inline Vec3<W> max(const Vec3<W>& a, const Vec3<W>& b) {
+    return {max(a.x, b.x), max(a.y, b.y), max(a.z, b.z)};
+}
+
+/// Lane-wise m ? a : b for all three components.
+template <int W>
+inline Vec3<W> select(const vmask<W>& m, const Vec3<W>& a, const Vec3<W>& b) {
+    return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
+}
+
+}  // namespace raylane

@@ -1,0 +1,310 @@
+// tests for simd/simd.h: widths, memory, selection, mask logic, operators, int bit operations
+// and conversions at every supported width, lane by lane against scalar C++ on random inputs
+// that include NaN, inf, -0.0 and denormals.
+#include "simd/simd.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <string>
+
+namespace raylane {
+namespace {
+
+constexpr int rounds = 2000;
+
+// ---- helpers (each tests/simd file keeps its own copy) ---------------------------------------
+
+template <class T>
+class SimdTest : public ::testing::Test {};
+struct WidthName {
+    template <class T>
+    static std::string GetName(int) {
+        return "W" + std::to_string(T::value);
+    }
+};
+using Widths = supported_widths<::testing::Types>;
+TYPED_TEST_SUITE(SimdTest, Widths, WidthName);
+
+uint32_t bits_of(float v) { return std::bit_cast<uint32_t>(v); }
+
+/// Identical bits, or both NaN (payloads of generated NaNs are not specified).
+bool same_float(float a, float b) {
+    return (std::isnan(a) && std::isnan(b)) || bits_of(a) == bits_of(b);
+}
+
+/// A mix of awkward values, random bit patterns and ordinary numbers.
+float random_input(std::mt19937& rng) {
+    static constexpr float specials[] = {0.0f,
+                                         -0.0f,
+                                         1.0f,
+                                         -1.0f,
+                                         std::numeric_limits<float>::infinity(),
+                                         -std::numeric_limits<float>::infinity(),
+                                         std::numeric_limits<float>::quiet_NaN(),
+                                         -std::numeric_limits<float>::quiet_NaN(),
+                                         std::numeric_limits<float>::denorm_min(),
+                                         -std::numeric_limits<float>::denorm_min(),
+                                         1e-40f,
+                                         -3e-39f,
+                                         std::numeric_limits<float>::min(),
+                                         std::numeric_limits<float>::max(),
+                                         std::numeric_limits<float>::lowest(),
+                                         0.5f,
+                                         2.0f,
+                                         1e30f};
+    switch (rng() % 4) {
+        case 0:
+            return specials[rng() % std::size(specials)];
+        case 1:
+            return std::bit_cast<float>(static_cast<uint32_t>(rng()));
+        default:
+            return std::uniform_real_distribution<float>(-100.0f, 100.0f)(rng);
+    }
+}
+
+template <int W>
+std::array<float, W> random_lanes(std::mt19937& rng) {
+    std::array<float, W> a;
+    for (float& v : a) v = random_input(rng);
+    return a;
+}
+
+template <int W>
+std::array<float, W> lanes_of(const vfloat<W>& v) {
+    std::array<float, W> a;
+    store(a.data(), v);
+    return a;
+}
+template <int W>
+std::array<int32_t, W> lanes_of(const vint<W>& v) {
+    std::array<int32_t, W> a;
+    store(a.data(), v);
+    return a;
+}
+
+/// A mask's lanes as bools, read through select (lane access lives in lanes.h).
+template <int W>
+std::array<bool, W> mask_lanes(const vmask<W>& m) {
+    const auto ones = lanes_of<W>(select(m, vfloat<W>(1.0f), vfloat<W>(0.0f)));
+    std::array<bool, W> a;
+    for (int l = 0; l < W; ++l) a[l] = ones[l] == 1.0f;
+    return a;
+}
+
+/// Applies op to random packets and oracle to their lanes; lanes must agree (same_float).
+template <int W, class Op, class Oracle>
+void expect_binary_matches(Op op, Oracle oracle, uint32_t seed) {
+    std::mt19937 rng(seed);
+    for (int r = 0; r < rounds; ++r) {
+        const auto a = random_lanes<W>(rng);
+        const auto b = random_lanes<W>(rng);
+        const auto got = lanes_of<W>(op(load<W>(a.data()), load<W>(b.data())));
+        for (int i = 0; i < W; ++i) {
+            const float want = oracle(a[i], b[i]);
+            ASSERT_TRUE(same_float(got[i], want))
+                << "lane " << i << ": f(" << std::hexfloat << a[i] << ", " << b[i]
+                << ") = " << got[i] << ", want " << want;
+        }
+    }
+}
+
+// ---- widths ---------------------------------------------------------------------------------
+
+TEST(SimdWidths, NativeWidthFollowsTheCompilerTarget) {
+    EXPECT_TRUE(width_supported<native_width>);
+    EXPECT_TRUE(width_supported<1>);
+    EXPECT_FALSE(width_supported<2>);
+#if defined(__AVX512F__)
+    EXPECT_EQ(native_width, 16);
+    EXPECT_TRUE(width_supported<8> && width_supported<4>);
+#elif defined(__AVX2__)
+    EXPECT_EQ(native_width, 8);
+    EXPECT_FALSE(width_supported<16>);
+#endif
+    EXPECT_EQ(width_of<vfloat<native_width>>, native_width);
+    EXPECT_EQ(width_of<vint<native_width>>, native_width);
+    EXPECT_EQ(width_of<vmask<native_width>>, native_width);
+    EXPECT_EQ(width_of<float>, 1);
+}
+
+TEST(SimdWidths, WidthOneIsPlainScalars) {
+    EXPECT_TRUE((std::is_same_v<vfloat<1>, float>));
+    EXPECT_TRUE((std::is_same_v<vint<1>, int32_t>));
+    EXPECT_TRUE((std::is_same_v<vmask<1>, bool>));
+}
+
+// ---- construction and memory ----------------------------------------------------------------
+
+TYPED_TEST(SimdTest, BroadcastFillsEveryLane) {
+    constexpr int W = TypeParam::value;
+    const auto f = lanes_of<W>(broadcast<W>(-0.0f));
+    const auto i = lanes_of<W>(broadcast<W>(int32_t{-7}));
+    const auto u = lanes_of<W>(broadcast<W>(0x9e3779b9u));
+    for (int l = 0; l < W; ++l) {
+        EXPECT_EQ(bits_of(f[l]), 0x80000000u);
+        EXPECT_EQ(i[l], -7);
+        EXPECT_EQ(static_cast<uint32_t>(u[l]), 0x9e3779b9u);
+    }
+}
+
+TYPED_TEST(SimdTest, LoadsAndStoresRoundTripAlignedAndUnaligned) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(1);
+    alignas(64) float src[W + 1];
+    alignas(64) int32_t isrc[W + 1];
+    for (int l = 0; l <= W; ++l) {
+        src[l] = random_input(rng);
+        isrc[l] = static_cast<int32_t>(rng());
+    }
+    alignas(64) float dst[W + 1] = {};
+    alignas(64) int32_t idst[W + 1] = {};
+    store_aligned(dst, load_aligned<W>(src));
+    store_aligned(idst, load_aligned<W>(isrc));
+    store(dst + 1, load<W>(src + 1));  // misaligned for W > 1
+    store(idst + 1, load<W>(isrc + 1));
+    for (int l = 0; l <= W; ++l) {
+        EXPECT_EQ(bits_of(dst[l]), bits_of(src[l])) << l;
+        EXPECT_EQ(idst[l], isrc[l]) << l;
+    }
+}
+
+// ---- masks and selection --------------------------------------------------------------------
+
+TYPED_TEST(SimdTest, SelectPassesOperandBitsThrough) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(3);
+    for (int r = 0; r < rounds; ++r) {
+        const auto a = random_lanes<W>(rng);
+        const auto b = random_lanes<W>(rng);
+        const auto c = random_lanes<W>(rng);
+        const auto d = random_lanes<W>(rng);
+        const vmask<W> m = load<W>(c.data()) < load<W>(d.data());
+        const auto got = lanes_of<W>(select(m, load<W>(a.data()), load<W>(b.data())));
+        const auto got_int = lanes_of<W>(
+            select(m, float_as_int(load<W>(a.data())), float_as_int(load<W>(b.data()))));
+        for (int l = 0; l < W; ++l) {
+            const float want = c[l] < d[l] ? a[l] : b[l];
+            ASSERT_EQ(bits_of(got[l]), bits_of(want));
+            ASSERT_EQ(static_cast<uint32_t>(got_int[l]), bits_of(want));
+        }
+    }
+}
+
+TYPED_TEST(SimdTest, ComparisonsAndMaskLogicMatchScalarCpp) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(4);
+    for (int r = 0; r < rounds; ++r) {
+        const auto a = random_lanes<W>(rng);
+        const auto b = random_lanes<W>(rng);
+        const vfloat<W> va = load<W>(a.data());
+        const vfloat<W> vb = load<W>(b.data());
+        const vmask<W> p = va < vb;
+        const vmask<W> q = va >= vfloat<W>(0.0f);
+        const auto lt_lanes = mask_lanes<W>(p), ge0 = mask_lanes<W>(q);
+        const auto both = mask_lanes<W>(mask_and(p, q)), either = mask_lanes<W>(mask_or(p, q));
+        const auto p_not_q = mask_lanes<W>(mask_andnot(p, q)), not_p = mask_lanes<W>(mask_not(p));
+        const auto equal = mask_lanes<W>(va == vb), le = mask_lanes<W>(va <= vb);
+        const auto gt = mask_lanes<W>(va > vb);
+        for (int l = 0; l < W; ++l) {
+            const bool pl = a[l] < b[l];
+            const bool ql = a[l] >= 0.0f;
+            ASSERT_EQ(lt_lanes[l], pl);
+            ASSERT_EQ(ge0[l], ql);
+            ASSERT_EQ(both[l], pl && ql);
+            ASSERT_EQ(either[l], pl || ql);
+            ASSERT_EQ(p_not_q[l], pl && !ql);
+            ASSERT_EQ(not_p[l], !pl);
+            ASSERT_EQ(equal[l], a[l] == b[l]);
+            ASSERT_EQ(le[l], a[l] <= b[l]);
+            ASSERT_EQ(gt[l], a[l] > b[l]);
+        }
+    }
+}
+
+// ---- operators ------------------------------------------------------------------------------
+
+TYPED_TEST(SimdTest, ArithmeticOperatorsAreCorrectlyRounded) {
+    constexpr int W = TypeParam::value;
+    // A double result rounded to float is correctly rounded for + - * / (53 >= 2 * 24 + 2).
+    auto via_double = [](auto op) {
+        return [op](float a, float b) { return static_cast<float>(op(double{a}, double{b})); };
+    };
+    expect_binary_matches<W>([](auto a, auto b) { return a + b; },
+                             via_double([](double a, double b) { return a + b; }), 10);
+    expect_binary_matches<W>([](auto a, auto b) { return a - b; },
+                             via_double([](double a, double b) { return a - b; }), 11);
+    expect_binary_matches<W>([](auto a, auto b) { return a * b; },
+                             via_double([](double a, double b) { return a * b; }), 12);
+    expect_binary_matches<W>([](auto a, auto b) { return a / b; },
+                             via_double([](double a, double b) { return a / b; }), 9);
+}
+
+// ---- int32 lanes ----------------------------------------------------------------------------
+
+TYPED_TEST(SimdTest, IntBitOpsAndComparisonsMatchScalarCpp) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(14);
+    for (int r = 0; r < rounds; ++r) {
+        std::array<int32_t, W> a, b;
+        for (int l = 0; l < W; ++l) {
+            a[l] = static_cast<int32_t>(rng());
+            b[l] = r % 5 == 0 ? a[l] : static_cast<int32_t>(rng());
+            if (r % 7 == 0) b[l] = std::numeric_limits<int32_t>::min();
+        }
+        const vint<W> va = load<W>(a.data());
+        const vint<W> vb = load<W>(b.data());
+        const auto x = lanes_of<W>(va ^ vb), n = lanes_of<W>(va & vb), o = lanes_of<W>(va | vb);
+        const auto equal = mask_lanes<W>(eq(va, vb)), less = mask_lanes<W>(lt(va, vb));
+        const auto greater = mask_lanes<W>(gt(va, vb));
+        for (int l = 0; l < W; ++l) {
+            ASSERT_EQ(x[l], a[l] ^ b[l]);
+            ASSERT_EQ(n[l], a[l] & b[l]);
+            ASSERT_EQ(o[l], a[l] | b[l]);
+            ASSERT_EQ(equal[l], a[l] == b[l]);
+            ASSERT_EQ(less[l], a[l] < b[l]);
+            ASSERT_EQ(greater[l], a[l] > b[l]);
+        }
+    }
+}
+
+// ---- conversions ----------------------------------------------------------------------------
+
+TYPED_TEST(SimdTest, ConversionsRoundAndTruncateAsDocumented) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(15);
+    for (int r = 0; r < rounds; ++r) {
+        std::array<int32_t, W> counters, any;
+        std::array<float, W> reals;
+        for (int l = 0; l < W; ++l) {
+            // lane 0 alternates between the two largest exact counters, 2^24 and 2^24 - 1
+            counters[l] = static_cast<int32_t>(l == 0 ? (1u << 24) - static_cast<uint32_t>(r % 2)
+                                                      : rng() % (1u << 24));
+            any[l] = static_cast<int32_t>(rng());
+            reals[l] = std::uniform_real_distribution<float>(-2.1e9f, 2.1e9f)(rng) /
+                       static_cast<float>(1u << (rng() % 31));
+        }
+        const auto exact = lanes_of<W>(to_float(load<W>(counters.data())));
+        const auto rounded = lanes_of<W>(to_float(load<W>(any.data())));
+        const auto truncated = lanes_of<W>(to_int(load<W>(reals.data())));
+        const auto as_int = lanes_of<W>(float_as_int(load<W>(reals.data())));
+        const auto as_float = lanes_of<W>(int_as_float(load<W>(any.data())));
+        for (int l = 0; l < W; ++l) {
+            ASSERT_EQ(static_cast<double>(exact[l]), static_cast<double>(counters[l]));
+            ASSERT_EQ(rounded[l], static_cast<float>(any[l]));
+            ASSERT_EQ(truncated[l], static_cast<int32_t>(std::trunc(double{reals[l]})));
+            ASSERT_EQ(static_cast<uint32_t>(as_int[l]), bits_of(reals[l]));
+            ASSERT_EQ(bits_of(as_float[l]), static_cast<uint32_t>(any[l]));
+        }
+    }
+    EXPECT_EQ(lanes_of<W>(to_int(vfloat<W>(-1.75f)))[0], -1);
+    EXPECT_EQ(lanes_of<W>(to_float(vint<W>(1 << 24)))[0], 16777216.0f);
+}
+
+}  // namespace
+}  // namespace raylane
