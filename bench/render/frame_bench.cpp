@@ -1,10 +1,11 @@
 // Benchmarks of render/: full frames of scenes/dragon.json (1920x1080, 1 sample, two point
-// lights with shadows) on 1 and 2 threads.
+// lights with shadows), scalar and packet path, on 1 and 2 threads.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
 
 #include "io/load_scene.h"
+#include "render/render_packet.h"
 #include "render/render_scalar.h"
 
 namespace raylane {
@@ -29,7 +30,7 @@ const Loaded* dragon_scene() {
     return loaded;
 }
 
-void BM_Frame_Scalar(benchmark::State& state) {
+void frame(benchmark::State& state, bool packet) {
     const Loaded* l = dragon_scene();
     if (!l) {
         state.SkipWithError("scenes/dragon.json or its model not found");
@@ -39,7 +40,8 @@ void BM_Frame_Scalar(benchmark::State& state) {
     params.threads = static_cast<int>(state.range(0));
     uint64_t rays = 0;
     for (auto _ : state) {
-        RenderResult r = render_scalar(l->scene, l->accel, params);
+        RenderResult r = packet ? render_packet(l->scene, l->accel, params)
+                                : render_scalar(l->scene, l->accel, params);
         rays += r.stats.total_rays();
         benchmark::DoNotOptimize(r.film.pixels.data());
     }
@@ -47,7 +49,21 @@ void BM_Frame_Scalar(benchmark::State& state) {
         benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
 }
 
-BENCHMARK(BM_Frame_Scalar)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+void BM_Frame_Scalar(benchmark::State& state) { frame(state, false); }
+void BM_Frame_Packet(benchmark::State& state) { frame(state, true); }
+
+BENCHMARK(BM_Frame_Scalar)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Frame_Packet)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace raylane

@@ -12,6 +12,8 @@ namespace raylane {
 std::vector<Tile> make_tiles(int width, int height, int tile_size) {
     std::vector<Tile> tiles;
     tile_size = std::max(1, tile_size);
+    tiles.reserve(size_t((width + tile_size - 1) / tile_size) *
+                  size_t((height + tile_size - 1) / tile_size));
     for (int y = 0; y < height; y += tile_size)
         for (int x = 0; x < width; x += tile_size)
             tiles.push_back(
