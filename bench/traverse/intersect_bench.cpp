@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <random>
@@ -30,10 +31,33 @@ namespace {
 
 constexpr size_t chunk = 256;  // rays per task
 
+/// A ray set in SoA form, padded with inactive rays (t_max = -1) to a multiple of `chunk`, so
+/// every contender reads its rays without repacking (as a renderer generating them would).
+struct RaySoa {
+    size_t size = 0;          ///< real rays; the padding follows
+    std::vector<float> c[8];  ///< org x y z, dir x y z, t_min, t_max
+    const float* at(int k, size_t i) const { return c[k].data() + i; }
+};
+
+RaySoa make_soa(const std::vector<Ray>& rays) {
+    RaySoa s;
+    s.size = rays.size();
+    const size_t padded = (rays.size() + chunk - 1) / chunk * chunk;
+    for (auto& v : s.c) v.resize(padded);
+    for (size_t i = 0; i < padded; ++i) {
+        Ray r = rays[std::min(i, rays.size() - 1)];
+        if (i >= rays.size()) r.t_max = -1.0f;
+        const float f[8] = {r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z, r.t_min, r.t_max};
+        for (int k = 0; k < 8; ++k) s.c[k][i] = f[k];
+    }
+    return s;
+}
+
 struct Workload {
     Scene scene;
     Accel accel;
     std::vector<Ray> primary, shadow, bounce;
+    RaySoa primary_soa, shadow_soa, bounce_soa;
 #ifdef RAYLANE_HAVE_EMBREE
     RTCDevice device = nullptr;
     RTCScene rtc_scene = nullptr;
@@ -122,6 +146,9 @@ Workload* workload(const std::string& name) {
                                  std::sqrt(std::max(0.0f, 1.0f - u1)) * n,
                              0.0f, infinity});
     }
+    w->primary_soa = make_soa(w->primary);
+    w->shadow_soa = make_soa(w->shadow);
+    w->bounce_soa = make_soa(w->bounce);
 #ifdef RAYLANE_HAVE_EMBREE
     build_embree(*w);
 #endif
@@ -131,8 +158,24 @@ Workload* workload(const std::string& name) {
 const std::vector<Ray>& rays_of(const Workload& w, const std::string& set) {
     return set == "primary" ? w.primary : set == "shadow" ? w.shadow : w.bounce;
 }
+const RaySoa& soa_of(const Workload& w, const std::string& set) {
+    return set == "primary" ? w.primary_soa : set == "shadow" ? w.shadow_soa : w.bounce_soa;
+}
+
+/// Packet of rays i .. i + W - 1 straight from the SoA arrays; padding lanes are inactive.
+template <int W>
+RayPacket<W> load_packet(const RaySoa& s, size_t i, vmask<W>& active) {
+    RayPacket<W> p;
+    p.org = load_vec3<W>(s.at(0, i), s.at(1, i), s.at(2, i));
+    p.dir = load_vec3<W>(s.at(3, i), s.at(4, i), s.at(5, i));
+    p.t_min = load<W>(s.at(6, i));
+    p.t_max = load<W>(s.at(7, i));
+    active = p.t_max >= p.t_min;
+    return p;
+}
 
 /// Runs body(first, last) over the rays in chunks on `threads` threads; counts rays per second.
+/// Chunks cover the padded SoA arrays; the scalar and AoS contenders stop at the last real ray.
 template <class Body>
 void run(benchmark::State& state, const std::vector<Ray>& rays, int threads, Body&& body) {
     tbb::task_arena arena(threads);
@@ -140,7 +183,7 @@ void run(benchmark::State& state, const std::vector<Ray>& rays, int threads, Bod
         arena.execute([&] {
             tbb::parallel_for(size_t(0), (rays.size() + chunk - 1) / chunk, [&](size_t c) {
                 enable_flush_to_zero();
-                body(c * chunk, std::min(rays.size(), (c + 1) * chunk));
+                body(c * chunk, (c + 1) * chunk);
             });
         });
     }
@@ -156,7 +199,7 @@ void bench_scalar(benchmark::State& state, std::string scene, std::string set, i
     const bool any_hit = set == "shadow";
     run(state, rays, threads, [&](size_t first, size_t last) {
         uint32_t sum = 0;
-        for (size_t i = first; i < last; ++i)
+        for (size_t i = first; i < std::min(last, rays.size()); ++i)
             sum += any_hit ? intersect_any(w->scene, w->accel, rays[i])
                            : intersect_closest(w->scene, w->accel, rays[i]).prim;
         benchmark::DoNotOptimize(sum);
@@ -223,7 +266,7 @@ void bench_embree1(benchmark::State& state, std::string scene, std::string set, 
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         unsigned sum = 0;
-        for (size_t i = first; i < last; ++i) {
+        for (size_t i = first; i < std::min(last, rays.size()); ++i) {
             const Ray& r = rays[i];
             RTCRayHit rh{};
             rh.ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y,
@@ -253,7 +296,7 @@ void bench_embree16(benchmark::State& state, std::string scene, std::string set,
         if (set == "primary") ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         if (stream) {
             alignas(64) RTCRayHit rh[chunk];
-            const size_t n = last - first;
+            const size_t n = std::min(last, rays.size()) - first;
             for (size_t k = 0; k < n; ++k) {
                 const Ray& r = rays[first + k];
                 rh[k].ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y,
@@ -264,16 +307,21 @@ void bench_embree16(benchmark::State& state, std::string scene, std::string set,
             benchmark::DoNotOptimize(rh[0].hit.primID);
             return;
         }
+        const RaySoa& soa = soa_of(*w, set);
         for (size_t i = first; i < last; i += 16) {
             alignas(64) RTCRayHit16 rh;
             alignas(64) int valid[16];
+            std::memcpy(rh.ray.org_x, soa.at(0, i), sizeof rh.ray.org_x);
+            std::memcpy(rh.ray.org_y, soa.at(1, i), sizeof rh.ray.org_y);
+            std::memcpy(rh.ray.org_z, soa.at(2, i), sizeof rh.ray.org_z);
+            std::memcpy(rh.ray.dir_x, soa.at(3, i), sizeof rh.ray.dir_x);
+            std::memcpy(rh.ray.dir_y, soa.at(4, i), sizeof rh.ray.dir_y);
+            std::memcpy(rh.ray.dir_z, soa.at(5, i), sizeof rh.ray.dir_z);
+            std::memcpy(rh.ray.tnear, soa.at(6, i), sizeof rh.ray.tnear);
+            std::memcpy(rh.ray.tfar, soa.at(7, i), sizeof rh.ray.tfar);
             for (int k = 0; k < 16; ++k) {
-                const Ray& r = rays[std::min(i + k, last - 1)];
-                valid[k] = i + k < last ? -1 : 0;
-                rh.ray.org_x[k] = r.org.x, rh.ray.org_y[k] = r.org.y, rh.ray.org_z[k] = r.org.z;
-                rh.ray.dir_x[k] = r.dir.x, rh.ray.dir_y[k] = r.dir.y, rh.ray.dir_z[k] = r.dir.z;
-                rh.ray.tnear[k] = r.t_min, rh.ray.tfar[k] = r.t_max, rh.ray.time[k] = 0.0f;
-                rh.ray.mask[k] = ~0u, rh.ray.id[k] = 0, rh.ray.flags[k] = 0;
+                valid[k] = rh.ray.tfar[k] >= rh.ray.tnear[k] ? -1 : 0;
+                rh.ray.time[k] = 0.0f, rh.ray.mask[k] = ~0u, rh.ray.id[k] = 0, rh.ray.flags[k] = 0;
                 rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
             }
             if (any_hit)
