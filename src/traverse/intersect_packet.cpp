@@ -6,12 +6,12 @@
 #include <cmath>
 
 #include "simd/bits.h"
-#include "traverse/box_scalar.h"
-#include "traverse/cylinder_scalar.h"
+#include "traverse/box_packet.h"
+#include "traverse/cylinder_packet.h"
 #include "traverse/intersect_scalar.h"
-#include "traverse/plane_scalar.h"
+#include "traverse/plane_packet.h"
 #include "traverse/slab_packet.h"
-#include "traverse/sphere_scalar.h"
+#include "traverse/sphere_packet.h"
 #include "traverse/triangle_packet.h"
 
 namespace raylane {
@@ -88,42 +88,31 @@ void record(HitPacket<W>& hit, vmask<W> win, const vfloat<W>& t, uint32_t object
     hit.prim = select(win, vint<W>(static_cast<int32_t>(prim)), hit.prim);
 }
 
-/// Analytic shapes, lane by lane through the scalar shape tests for now.
-// TODO(#3): packet twins of the sphere, box, cylinder and plane tests.
+/// Analytic shapes: the packet twins of the shape tests; single triangles lane by lane.
 template <int W>
 vfloat<W> intersect_analytic(const Scene& scene, const Object& object, const RayPacket<W>& rays,
                              vmask<W> active) {
-    vfloat<W> t(infinity);
-    for_each_active(active, [&](int i) {
-        const Ray r = get_ray(rays, i);
-        float ti = infinity;
-        switch (object.kind) {
-            case ShapeKind::sphere:
-                ti = intersect_sphere(scene.spheres[object.shape], r);
-                break;
-            case ShapeKind::box:
-                ti = intersect_box(scene.boxes[object.shape], r);
-                break;
-            case ShapeKind::cylinder:
-                ti = intersect_cylinder(scene.cylinders[object.shape], r);
-                break;
-            case ShapeKind::plane:
-                ti = intersect_plane(scene.planes[object.shape], r);
-                break;
-            case ShapeKind::triangle: {
-                const Triangle& tri = scene.triangles[object.shape];
-                float tt, u, v;
-                if (intersect_triangle(make_watertight_ray(r), tri.p0, tri.p1, tri.p2, r.t_min,
-                                       r.t_max, tt, u, v))
-                    ti = tt;
-                break;
-            }
-            case ShapeKind::mesh:
-                break;
+    switch (object.kind) {
+        case ShapeKind::sphere:
+            return intersect_sphere<W>(scene.spheres[object.shape], rays, active);
+        case ShapeKind::box:
+            return intersect_box<W>(scene.boxes[object.shape], rays, active);
+        case ShapeKind::cylinder:
+            return intersect_cylinder<W>(scene.cylinders[object.shape], rays, active);
+        case ShapeKind::plane:
+            return intersect_plane<W>(scene.planes[object.shape], rays, active);
+        case ShapeKind::triangle: {
+            const Triangle& tri = scene.triangles[object.shape];
+            const WatertightPacket<W> wr = make_watertight_ray(rays, active);
+            vfloat<W> t(infinity), u(0.0f), v(0.0f);
+            const vmask<W> hit = intersect_triangle(wr, tri.p0, tri.p1, tri.p2, rays.t_min,
+                                                    rays.t_max, t, u, v, active);
+            return select(hit, t, vfloat<W>(infinity));
         }
-        set(t, i, ti);
-    });
-    return t;
+        case ShapeKind::mesh:
+            break;
+    }
+    return vfloat<W>(infinity);
 }
 
 // mesh: closest hit over one mesh's BVH, near child first by the first active lane's signs.

@@ -169,7 +169,7 @@ size_t closest_block_mismatches(const Loaded& l, const std::vector<Ray>& rays,
     const size_t packets = (rays.size() + W - 1) / W;
     tbb::parallel_for(size_t(0), (packets + per_block - 1) / per_block, [&](size_t b) {
         RayPacket<W> p[per_block];
-        vmask<W> active[per_block];
+        vmask<W> active[per_block] = {};
         HitPacket<W> got[per_block];
         int count = 0;
         for (size_t k = b * per_block; k < std::min(packets, (b + 1) * per_block); ++k, ++count)
@@ -194,7 +194,7 @@ size_t any_block_mismatches(const Loaded& l, const std::vector<Ray>& rays,
     const size_t packets = (rays.size() + W - 1) / W;
     tbb::parallel_for(size_t(0), (packets + per_block - 1) / per_block, [&](size_t b) {
         RayPacket<W> p[per_block];
-        vmask<W> active[per_block], got[per_block];
+        vmask<W> active[per_block] = {}, got[per_block] = {};
         int count = 0;
         for (size_t k = b * per_block; k < std::min(packets, (b + 1) * per_block); ++k, ++count)
             p[count] = make_packet<W>(rays, k * W, active[count]);
