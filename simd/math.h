@@ -250,6 +250,15 @@ inline float hsum(const PFloat<A>& v, const PMask<A>& m) {
     return xsimd::hadd(select(m, v, PFloat<A>(0.0f)));
 }
 
+/// x^y for x > 0. W = 1 is std::pow; packets compute exp2(y log2 x) with xsimd's vectorised
+/// exp2 and log2 (relative error about |y log2 x| * 2^-23 from std::pow: compare with a
+/// tolerance). x = 0 gives 0 for y > 0.
+inline float pow(float x, float y) { return std::pow(x, y); }
+template <class A>
+inline PFloat<A> pow(const PFloat<A>& x, const PFloat<A>& y) {
+    return xsimd::exp2(y * xsimd::log2(x));
+}
+
 /// The unmasked forms: every lane counts.
 template <AnyFloat V>
 inline float hmin(const V& v) {

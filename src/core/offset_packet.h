@@ -4,7 +4,6 @@
 #pragma once
 
 #include "core/offset.h"
-#include "simd/bits.h"
 #include "simd/math.h"
 #include "simd/vec3.h"
 
@@ -14,10 +13,10 @@ template <int W>
 inline Vec3<W> offset_ray_origin(const Vec3<W>& p, const Vec3<W>& n) {
     auto axis = [](const vfloat<W>& pk, const vfloat<W>& nk) {
         const vint<W> of_i = to_int(vfloat<W>(offset_int_scale) * nk);  // truncates, as the cast
-        const vint<W> bits_p = as_int(pk);
+        const vint<W> bits_p = float_as_int(pk);
         const vmask<W> negative = pk < vfloat<W>(0.0f);
         const vint<W> moved = select(negative, bits_p - of_i, bits_p + of_i);
-        const vfloat<W> p_i = as_float(moved);
+        const vfloat<W> p_i = int_as_float(moved);
         const vfloat<W> p_f = pk + vfloat<W>(offset_float_scale) * nk;
         return select(abs(pk) < vfloat<W>(offset_origin), p_f, p_i);
     };

@@ -2,7 +2,6 @@
 #include "shade/shade_packet.h"
 
 #include "core/offset_packet.h"
-#include "simd/bits.h"
 #include "traverse/intersect_packet.h"
 
 namespace raylane {

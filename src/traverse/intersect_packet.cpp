@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "simd/bits.h"
 #include "traverse/box_packet.h"
 #include "traverse/cylinder_packet.h"
 #include "traverse/intersect_scalar.h"
@@ -22,11 +21,11 @@ vfloat<W> next_float_up(const vfloat<W>& x) {
         return std::nextafter(x, infinity);
     } else {
         // one step up the float bit patterns: +1 above zero, -1 below it (sign-magnitude)
-        const vint<W> b = as_int(x);
-        const vfloat<W> up = as_float(b + vint<W>(1)), down = as_float(b - vint<W>(1));
+        const vint<W> b = float_as_int(x);
+        const vfloat<W> up = int_as_float(b + vint<W>(1)), down = int_as_float(b - vint<W>(1));
         const vfloat<W> zero(0.0f);
         vfloat<W> out = select(x > zero, up, select(x < zero, down, x));
-        out = select(x == zero, as_float(vint<W>(1)), out);  // +-0 -> smallest denormal
+        out = select(x == zero, int_as_float(vint<W>(1)), out);  // +-0 -> smallest denormal
         return select(x == vfloat<W>(infinity), x, out);     // +inf stays, NaN stays
     }
 }

@@ -134,7 +134,7 @@ inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, vec3 a, vec3 b
     const vmask<W> inside = mask_or(mask_and(mask_and(e_a >= zero, e_b >= zero), e_c >= zero),
                                     mask_and(mask_and(e_a <= zero, e_b <= zero), e_c <= zero));
     const vfloat<W> det = e_a + e_b + e_c;
-    vmask<W> hit = mask_and(mask_and(inside, det != zero), active);
+    vmask<W> hit = mask_and(mask_and(inside, ne(det, zero)), active);
     if (none(hit)) return hit;
 
     // degenerate: a property of the triangle alone, tested once for all lanes
