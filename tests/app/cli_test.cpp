@@ -1,6 +1,7 @@
 // Tests of the `raylane` command line: exit codes, one-line errors, outputs.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -17,9 +18,13 @@ struct CliRun {
 
 /// Runs the raylane binary with `args` (a shell fragment), capturing stdout and stderr.
 CliRun run(const std::string& args) {
+    // per test and process: ctest runs the tests of this file in parallel
     const std::filesystem::path dir = std::filesystem::temp_directory_path();
-    const std::string out = (dir / "raylane_cli_out.txt").string();
-    const std::string err = (dir / "raylane_cli_err.txt").string();
+    const std::string tag =
+        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+        std::to_string(getpid());
+    const std::string out = (dir / ("raylane_cli_out_" + tag + ".txt")).string();
+    const std::string err = (dir / ("raylane_cli_err_" + tag + ".txt")).string();
     const std::string cmd = std::string(RAYLANE_BINARY) + " " + args + " >" + out + " 2>" + err;
     const int status = std::system(cmd.c_str());
     CliRun r;

@@ -12,6 +12,8 @@ namespace {
 std::atomic<long> allocations{0};
 }
 
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void* operator new(size_t n) {
     ++allocations;
     if (void* p = std::malloc(n ? n : 1)) return p;
@@ -19,6 +21,7 @@ void* operator new(size_t n) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 namespace raylane {
 namespace {

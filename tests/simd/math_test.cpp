@@ -295,7 +295,9 @@ TYPED_TEST(MathTest, SignBitOpsMatchTheScalarLibrary) {
             ASSERT_EQ(bits_of(cs[l]), bits_of(std::copysign(a[l], s[l])));
             const uint32_t flipped = bits_of(a[l]) ^ (bits_of(s[l]) & 0x80000000u);
             ASSERT_EQ(bits_of(ms[l]), flipped);
-            if (!std::isnan(a[l]) && !std::isnan(s[l]) && s[l] != 0.0f) {
+            // the multiply agrees except on denormals, which the test harness flushes (DAZ)
+            if (!std::isnan(a[l]) && !std::isnan(s[l]) && s[l] != 0.0f &&
+                (bits_of(a[l]) & 0x7f800000u) != 0u) {
                 ASSERT_EQ(bits_of(ms[l]), bits_of(a[l] * (s[l] < 0.0f ? -1.0f : 1.0f)));
             }
         }
