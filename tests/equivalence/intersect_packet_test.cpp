@@ -14,6 +14,7 @@
 #include "core/offset.h"
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
+#include "support/widths.h"
 #include "traverse/intersect_scalar.h"
 
 namespace raylane {
@@ -211,13 +212,6 @@ size_t any_block_mismatches(const Loaded& l, const std::vector<Ray>& rays,
 
 template <class T>
 class IntersectPacket : public ::testing::Test {};
-struct WidthName {
-    template <class T>
-    static std::string GetName(int) {
-        return "W" + std::to_string(T::value);
-    }
-};
-using Widths = supported_widths<::testing::Types>;
 TYPED_TEST_SUITE(IntersectPacket, Widths, WidthName);
 
 const RaySets& ray_sets(const std::string& name) {

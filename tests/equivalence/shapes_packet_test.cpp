@@ -14,6 +14,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "support/widths.h"
 #include "traverse/box_packet.h"
 #include "traverse/cylinder_packet.h"
 #include "traverse/plane_packet.h"
@@ -380,13 +381,6 @@ std::vector<ShapeCase<Plane>> plane_cases() {
 
 template <class T>
 class ShapesPacket : public ::testing::Test {};
-struct WidthName {
-    template <class T>
-    static std::string GetName(int) {
-        return "W" + std::to_string(T::value);
-    }
-};
-using Widths = supported_widths<::testing::Types>;
 TYPED_TEST_SUITE(ShapesPacket, Widths, WidthName);
 
 TYPED_TEST(ShapesPacket, SphereMatchesScalarBitForBit) {

@@ -10,6 +10,7 @@
 #include "render/compare.h"
 #include "render/render_scalar.h"
 #include "simd/simd.h"
+#include "support/widths.h"
 
 namespace raylane {
 namespace {
@@ -20,13 +21,6 @@ constexpr double colour_tolerance = 1e-5;
 
 template <class T>
 class RenderPacket : public ::testing::Test {};
-struct WidthName {
-    template <class T>
-    static std::string GetName(int) {
-        return "W" + std::to_string(T::value);
-    }
-};
-using Widths = supported_widths<::testing::Types>;
 TYPED_TEST_SUITE(RenderPacket, Widths, WidthName);
 
 Scene small(Scene scene, int width) {

@@ -1,9 +1,9 @@
 // Tests of scene/mesh_normals.cpp.
+#include "scene/mesh_normals.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "scene/mesh_normals.h"
 
 namespace raylane {
 namespace {

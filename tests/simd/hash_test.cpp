@@ -11,19 +11,13 @@
 
 #include "core/rng.h"
 #include "simd/lanes.h"  // lane_index
+#include "support/widths.h"
 
 namespace raylane {
 namespace {
 
 template <class T>
 class HashTest : public ::testing::Test {};
-struct WidthName {
-    template <class T>
-    static std::string GetName(int) {
-        return "W" + std::to_string(T::value);
-    }
-};
-using Widths = supported_widths<::testing::Types>;
 TYPED_TEST_SUITE(HashTest, Widths, WidthName);
 
 constexpr uint32_t counters = 100000;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "support/widths.h"
+
 namespace raylane {
 namespace {
 
@@ -21,13 +23,6 @@ constexpr int rounds = 2000;
 
 template <class T>
 class LanesTest : public ::testing::Test {};
-struct WidthName {
-    template <class T>
-    static std::string GetName(int) {
-        return "W" + std::to_string(T::value);
-    }
-};
-using Widths = supported_widths<::testing::Types>;
 TYPED_TEST_SUITE(LanesTest, Widths, WidthName);
 
 uint32_t bits_of(float v) { return std::bit_cast<uint32_t>(v); }

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "simd/lanes.h"  // get, lane_index, mask_from_bits
+#include "support/widths.h"
 
 namespace raylane {
 namespace {
@@ -24,13 +25,6 @@ constexpr float inf = std::numeric_limits<float>::infinity();
 
 template <class T>
 class MathTest : public ::testing::Test {};
-struct WidthName {
-    template <class T>
-    static std::string GetName(int) {
-        return "W" + std::to_string(T::value);
-    }
-};
-using Widths = supported_widths<::testing::Types>;
 TYPED_TEST_SUITE(MathTest, Widths, WidthName);
 
 uint32_t bits_of(float v) { return std::bit_cast<uint32_t>(v); }

@@ -13,6 +13,8 @@
 #include <random>
 #include <string>
 
+#include "support/widths.h"
+
 namespace raylane {
 namespace {
 
@@ -22,13 +24,6 @@ constexpr int rounds = 2000;
 
 template <class T>
 class SimdTest : public ::testing::Test {};
-struct WidthName {
-    template <class T>
-    static std::string GetName(int) {
-        return "W" + std::to_string(T::value);
-    }
-};
-using Widths = supported_widths<::testing::Types>;
 TYPED_TEST_SUITE(SimdTest, Widths, WidthName);
 
 uint32_t bits_of(float v) { return std::bit_cast<uint32_t>(v); }

@@ -12,6 +12,8 @@
 #include <random>
 #include <string>
 
+#include "support/widths.h"
+
 namespace raylane {
 namespace {
 
@@ -21,13 +23,6 @@ constexpr int rounds = 1000;
 
 template <class T>
 class Vec3Test : public ::testing::Test {};
-struct WidthName {
-    template <class T>
-    static std::string GetName(int) {
-        return "W" + std::to_string(T::value);
-    }
-};
-using Widths = supported_widths<::testing::Types>;
 TYPED_TEST_SUITE(Vec3Test, Widths, WidthName);
 
 uint32_t bits_of(float v) { return std::bit_cast<uint32_t>(v); }
