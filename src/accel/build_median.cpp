@@ -66,6 +66,37 @@ void select_kth(PrimRef* a, size_t n, size_t k, PrimRef* scratch) {
     }
 }
 
+/// Moves the k-th smallest to a[k] as select_kth does, but first narrows the search with one
+/// histogram of the keys over [c_lo, c_hi] (256 bins): elements of lower bins go before the
+/// median's bin, higher bins after it, so quickselect only runs inside one small bin.
+template <int axis>
+void select_kth_binned(PrimRef* a, size_t n, size_t k, float c_lo, float c_hi, PrimRef* scratch) {
+    constexpr int bins = 256;
+    const float extent = c_hi - c_lo;
+    if (!(extent > 0.0f)) return;  // all keys equal: every order is a median split
+    const float scale = static_cast<float>(bins) * 0.9999f / extent;
+    auto bin_of = [&](const PrimRef& r) {
+        const int b = static_cast<int>((r.centroid2[axis] - c_lo) * scale);
+        return std::clamp(b, 0, bins - 1);  // monotonic in the key, so bins are ordered
+    };
+    // histogram
+    uint32_t count[bins] = {};
+    for (size_t i = 0; i < n; ++i) ++count[bin_of(a[i])];
+    // the median's bin m: [0, below) lies in lower bins, [below, below + count[m]) in m
+    size_t below = 0;
+    int m = 0;
+    while (below + count[m] <= k) below += count[m++];
+    // partition: lower bins, the median's bin, higher bins (out of place, then copied back)
+    size_t cursor[3] = {0, below, below + count[m]};
+    for (size_t i = 0; i < n; ++i) {
+        const int b = bin_of(a[i]);
+        const int region = (b > m) + (b >= m);
+        scratch[cursor[region]++] = a[i];
+    }
+    std::copy(scratch, scratch + n, a);
+    select_kth<axis>(a + below, count[m], k - below, scratch);
+}
+
 struct Builder {
     std::span<const Aabb> prim_bounds;
     std::vector<PrimRef>& refs;
@@ -108,9 +139,11 @@ struct Builder {
         const int axis = Aabb{c_lo, c_hi}.longest_axis();
         const uint32_t mid = begin + count / 2;
         PrimRef* a = refs.data() + begin;
-        if (axis == 0) select_kth<0>(a, count, count / 2, scratch.data());
-        if (axis == 1) select_kth<1>(a, count, count / 2, scratch.data());
-        if (axis == 2) select_kth<2>(a, count, count / 2, scratch.data());
+        PrimRef* tmp = scratch.data();
+        const float lo = c_lo[axis], hi = c_hi[axis];
+        if (axis == 0) select_kth_binned<0>(a, count, count / 2, lo, hi, tmp);
+        if (axis == 1) select_kth_binned<1>(a, count, count / 2, lo, hi, tmp);
+        if (axis == 2) select_kth_binned<2>(a, count, count / 2, lo, hi, tmp);
         bounds.grow(build(begin, mid));  // the first child follows its parent
         const uint32_t second = static_cast<uint32_t>(nodes.size());
         bounds.grow(build(mid, end));
