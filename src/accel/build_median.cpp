@@ -1,106 +1,61 @@
 // accel: the median-split BVH build (the report's build), flattened depth-first as it goes.
 #include <algorithm>
+#include <bit>
 
 #include "accel/bvh.h"
 
 namespace raylane {
 namespace {
 
-/// A primitive during the build: twice its centroid (lo + hi; for ordering only) and its
-/// caller index. 16 bytes, partitioned in place; boxes are looked up by id.
-struct PrimRef {
-    float centroid2[3];
-    uint32_t id;
-};
-
-/// Moves the k-th smallest (by centroid on `axis`) to a[k], smaller ones before it and larger
-/// ones after it: a quickselect (Hoare, 1961) with a median-of-three pivot. Each partition is
-/// out of place and branch-free (every element is written to both ends of `scratch`, one cursor
-/// advances), so neither mispredicted branches nor store-to-load chains slow it down.
-template <int axis>
-void select_kth(PrimRef* a, size_t n, size_t k, PrimRef* scratch) {
-    size_t lo = 0, hi = n;
-    while (hi - lo > 16) {
-        const float x = a[lo].centroid2[axis], y = a[lo + (hi - lo) / 2].centroid2[axis];
-        const float z = a[hi - 1].centroid2[axis];
-        const float pivot = std::max(std::min(x, y), std::min(std::max(x, y), z));
-        // partition: [lo, j) < pivot <= [j, hi)
-        size_t left = 0, right = hi - lo - 1;
-        for (size_t i = lo; i < hi; ++i) {
-            const PrimRef v = a[i];
-            const bool less = v.centroid2[axis] < pivot;
-            scratch[left] = v;
-            scratch[right] = v;
-            left += less;
-            right -= !less;
-        }
-        std::copy(scratch, scratch + (hi - lo), a + lo);
-        size_t j = lo + left;
-        if (j == lo) {
-            // the pivot is the minimum: gather the elements equal to it at the front
-            left = 0;
-            right = hi - lo - 1;
-            for (size_t i = lo; i < hi; ++i) {
-                const PrimRef v = a[i];
-                const bool equal = v.centroid2[axis] == pivot;
-                scratch[left] = v;
-                scratch[right] = v;
-                left += equal;
-                right -= !equal;
-            }
-            std::copy(scratch, scratch + (hi - lo), a + lo);
-            j = lo + left;
-            if (k < j) return;  // a[k] equals the pivot, which is the k-th smallest
-        }
-        if (k < j)
-            hi = j;
-        else
-            lo = j;
-    }
-    // small ranges: insertion sort
-    for (size_t i = lo + 1; i < hi; ++i) {
-        const PrimRef v = a[i];
-        size_t j = i;
-        for (; j > lo && a[j - 1].centroid2[axis] > v.centroid2[axis]; --j) a[j] = a[j - 1];
-        a[j] = v;
-    }
+/// A float's bits mapped to an unsigned key with the same order (negatives flipped).
+uint32_t order_key(float f) {
+    const uint32_t u = std::bit_cast<uint32_t>(f);
+    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
 }
 
-/// Moves the k-th smallest to a[k] as select_kth does, but first narrows the search with one
-/// histogram of the keys over [c_lo, c_hi] (256 bins): elements of lower bins go before the
-/// median's bin, higher bins after it, so quickselect only runs inside one small bin.
-template <int axis>
-void select_kth_binned(PrimRef* a, size_t n, size_t k, float c_lo, float c_hi, PrimRef* scratch) {
-    constexpr int bins = 256;
-    const float extent = c_hi - c_lo;
-    if (!(extent > 0.0f)) return;  // all keys equal: every order is a median split
-    const float scale = static_cast<float>(bins) * 0.9999f / extent;
-    auto bin_of = [&](const PrimRef& r) {
-        const int b = static_cast<int>((r.centroid2[axis] - c_lo) * scale);
-        return std::clamp(b, 0, bins - 1);  // monotonic in the key, so bins are ordered
-    };
-    // histogram
-    uint32_t count[bins] = {};
-    for (size_t i = 0; i < n; ++i) ++count[bin_of(a[i])];
-    // the median's bin m: [0, below) lies in lower bins, [below, below + count[m]) in m
-    size_t below = 0;
-    int m = 0;
-    while (below + count[m] <= k) below += count[m++];
-    // partition: lower bins, the median's bin, higher bins (out of place, then copied back)
-    size_t cursor[3] = {0, below, below + count[m]};
-    for (size_t i = 0; i < n; ++i) {
-        const int b = bin_of(a[i]);
-        const int region = (b > m) + (b >= m);
-        scratch[cursor[region]++] = a[i];
+/// The primitive ids 0 .. n-1 sorted by key: LSD radix sort, three passes of 11 bits. Stable.
+std::vector<uint32_t> sorted_ids(std::vector<uint32_t> keys) {
+    const size_t n = keys.size();
+    std::vector<uint32_t> ids(n), keys2(n), ids2(n);
+    for (size_t i = 0; i < n; ++i) ids[i] = static_cast<uint32_t>(i);
+    // the three digit histograms in one pass
+    static thread_local uint32_t histogram[3][2048];
+    for (auto& h : histogram) std::fill(std::begin(h), std::end(h), 0u);
+    for (uint32_t k : keys) {
+        ++histogram[0][k & 2047u];
+        ++histogram[1][(k >> 11) & 2047u];
+        ++histogram[2][k >> 22];
     }
-    std::copy(scratch, scratch + n, a);
-    select_kth<axis>(a + below, count[m], k - below, scratch);
+    for (int pass = 0, shift = 0; pass < 3; ++pass, shift += 11) {
+        uint32_t* offset = histogram[pass];
+        uint32_t sum = 0;
+        for (int d = 0; d < 2048; ++d) {
+            const uint32_t c = offset[d];
+            offset[d] = sum;
+            sum += c;
+        }
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t pos = offset[(keys[i] >> shift) & 2047u]++;
+            keys2[pos] = keys[i];
+            ids2[pos] = ids[i];
+        }
+        keys.swap(keys2);
+        ids.swap(ids2);
+    }
+    return ids;
 }
 
+/// The build keeps the primitives of every node sorted three times, once per axis by centroid
+/// (three lists, the same ids in each node's range). The median along any axis is then the
+/// middle of that axis's list, and the centroid bounds are the ends of the three lists. A split
+/// partitions the two other lists stably in one pass, into a second set of buffers (no copy
+/// back), so a level costs O(n) and the build O(n log n) after three radix sorts.
 struct Builder {
     std::span<const Aabb> prim_bounds;
-    std::vector<PrimRef>& refs;
-    std::vector<PrimRef>& scratch;
+    std::vector<float> centroid2[3];    ///< lo + hi per axis: twice the centroid
+    std::vector<uint32_t> order[2][3];  ///< two buffers: depth d reads order[d % 2]
+    std::vector<uint8_t> right;         ///< per primitive: goes to the second child
+    std::vector<uint32_t>& prim_ids;
     std::vector<BvhNode>& nodes;
     uint32_t max_leaf;
 
@@ -111,16 +66,21 @@ struct Builder {
         }
     }
 
-    /// Emits the node for refs[begin, end) and its subtree in depth-first order; returns the
-    /// node's bounds (computed bottom-up: leaves from their boxes, parents from their children).
-    Aabb build(uint32_t begin, uint32_t end) {
+    /// Emits the node for the lists' range [begin, end) and its subtree in depth-first order;
+    /// returns the node's bounds (bottom-up: leaves from their boxes, parents from children).
+    Aabb build(uint32_t begin, uint32_t end, int depth) {
         const uint32_t node_index = static_cast<uint32_t>(nodes.size());
         nodes.push_back({});
         const uint32_t count = end - begin;
+        std::vector<uint32_t>* cur = order[depth & 1];
+        std::vector<uint32_t>* next = order[(depth & 1) ^ 1];
         Aabb bounds;
         if (count <= max_leaf) {
-            // leaf
-            for (uint32_t i = begin; i < end; ++i) bounds.grow(prim_bounds[refs[i].id]);
+            // leaf: its primitives in leaf order
+            for (uint32_t i = begin; i < end; ++i) {
+                prim_ids[i] = cur[0][i];
+                bounds.grow(prim_bounds[cur[0][i]]);
+            }
             BvhNode& node = nodes[node_index];
             set_bounds(node, bounds);
             node.index = begin;
@@ -128,25 +88,28 @@ struct Builder {
             node.axis = 0;
             return bounds;
         }
-        // split: object median along the longest axis of the centroid bounds (the median element at
-        // mid, smaller centroids before it, larger after)
-        vec3 c_lo(infinity), c_hi(-infinity);
-        for (uint32_t i = begin; i < end; ++i) {
-            const vec3 c(refs[i].centroid2[0], refs[i].centroid2[1], refs[i].centroid2[2]);
-            c_lo = glm::min(c_lo, c);
-            c_hi = glm::max(c_hi, c);
-        }
-        const int axis = Aabb{c_lo, c_hi}.longest_axis();
+        // split: object median along the longest axis of the centroid bounds
+        vec3 extent;
+        for (int k = 0; k < 3; ++k)
+            extent[k] = centroid2[k][cur[k][end - 1]] - centroid2[k][cur[k][begin]];
+        const int axis = Aabb{vec3(0.0f), extent}.longest_axis();
         const uint32_t mid = begin + count / 2;
-        PrimRef* a = refs.data() + begin;
-        PrimRef* tmp = scratch.data();
-        const float lo = c_lo[axis], hi = c_hi[axis];
-        if (axis == 0) select_kth_binned<0>(a, count, count / 2, lo, hi, tmp);
-        if (axis == 1) select_kth_binned<1>(a, count, count / 2, lo, hi, tmp);
-        if (axis == 2) select_kth_binned<2>(a, count, count / 2, lo, hi, tmp);
-        bounds.grow(build(begin, mid));  // the first child follows its parent
+        for (uint32_t i = begin; i < end; ++i) right[cur[axis][i]] = i >= mid;
+        // the split axis's list is already split at mid; the two others are partitioned
+        // stably (both in one pass) into the next buffer
+        const int k1 = (axis + 1) % 3, k2 = (axis + 2) % 3;
+        std::copy(cur[axis].begin() + begin, cur[axis].begin() + end, next[axis].begin() + begin);
+        uint32_t l1 = begin, r1 = mid, l2 = begin, r2 = mid;
+        for (uint32_t i = begin; i < end; ++i) {
+            const uint32_t a = cur[k1][i], b = cur[k2][i];
+            const bool ra = right[a], rb = right[b];
+            next[k1][ra ? r1 : l1] = a;
+            next[k2][rb ? r2 : l2] = b;
+            r1 += ra, l1 += !ra, r2 += rb, l2 += !rb;
+        }
+        bounds.grow(build(begin, mid, depth + 1));  // the first child follows its parent
         const uint32_t second = static_cast<uint32_t>(nodes.size());
-        bounds.grow(build(mid, end));
+        bounds.grow(build(mid, end, depth + 1));
         BvhNode& node = nodes[node_index];
         set_bounds(node, bounds);
         node.index = second;
@@ -161,20 +124,24 @@ struct Builder {
 Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params) {
     Bvh bvh;
     if (prim_bounds.empty()) return bvh;
+    const size_t n = prim_bounds.size();
     const uint32_t max_leaf = static_cast<uint32_t>(std::clamp(params.max_leaf_size, 1, 65535));
-    std::vector<PrimRef> refs(prim_bounds.size());
-    for (size_t i = 0; i < prim_bounds.size(); ++i) {
-        const Aabb& b = prim_bounds[i];
-        refs[i] = {{b.lo.x + b.hi.x, b.lo.y + b.hi.y, b.lo.z + b.hi.z}, static_cast<uint32_t>(i)};
+    bvh.prim_ids.resize(n);
+    Builder b{prim_bounds, {}, {}, std::vector<uint8_t>(n), bvh.prim_ids, bvh.nodes, max_leaf};
+    for (int k = 0; k < 3; ++k) {
+        b.centroid2[k].resize(n);
+        std::vector<uint32_t> keys(n);
+        for (size_t i = 0; i < n; ++i) {
+            b.centroid2[k][i] = prim_bounds[i].lo[k] + prim_bounds[i].hi[k];
+            keys[i] = order_key(b.centroid2[k][i]);
+        }
+        b.order[0][k] = sorted_ids(std::move(keys));
+        b.order[1][k].resize(n);
     }
     // Leaves hold at least max_leaf / 2 primitives (halving a range > max_leaf), so fewer than
     // 4n / max_leaf + 1 nodes are made.
-    bvh.nodes.reserve(4 * prim_bounds.size() / max_leaf + 1);
-    std::vector<PrimRef> scratch(refs.size());
-    Builder{prim_bounds, refs, scratch, bvh.nodes, max_leaf}.build(
-        0, static_cast<uint32_t>(refs.size()));
-    bvh.prim_ids.resize(refs.size());
-    for (size_t i = 0; i < refs.size(); ++i) bvh.prim_ids[i] = refs[i].id;
+    bvh.nodes.reserve(4 * n / max_leaf + 1);
+    b.build(0, static_cast<uint32_t>(n), 0);
     return bvh;
 }
 
