@@ -26,7 +26,7 @@ vfloat<W> next_float_up(const vfloat<W>& x) {
         const vfloat<W> zero(0.0f);
         vfloat<W> out = select(x > zero, up, select(x < zero, down, x));
         out = select(x == zero, int_as_float(vint<W>(1)), out);  // +-0 -> smallest denormal
-        return select(x == vfloat<W>(infinity), x, out);     // +inf stays, NaN stays
+        return select(x == vfloat<W>(infinity), x, out);         // +inf stays, NaN stays
     }
 }
 
