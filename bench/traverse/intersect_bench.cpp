@@ -212,11 +212,11 @@ void bench_packet(benchmark::State& state, std::string scene, std::string set, i
     if (!w) return state.SkipWithError("scene or model not found");
     const std::vector<Ray>& rays = rays_of(*w, set);
     const bool any_hit = set == "shadow";
+    const RaySoa& soa = soa_of(*w, set);
     run(state, rays, threads, [&](size_t first, size_t last) {
         for (size_t i = first; i < last; i += W) {
             vmask<W> active;
-            const RayPacket<W> p =
-                load_rays<W>(&rays[i], int(std::min<size_t>(W, last - i)), active);
+            const RayPacket<W> p = load_packet<W>(soa, i, active);
             if (any_hit) {
                 benchmark::DoNotOptimize(intersect_any(w->scene, w->accel, p, active));
             } else {
@@ -235,16 +235,16 @@ void bench_block(benchmark::State& state, std::string scene, std::string set, in
     const std::vector<Ray>& rays = rays_of(*w, set);
     const bool any_hit = set == "shadow";
     static_assert(chunk % max_block_rays == 0);
+    const RaySoa& soa = soa_of(*w, set);
     run(state, rays, threads, [&](size_t first, size_t last) {
         constexpr int per_block = max_block_rays / W;
         RayPacket<W> p[per_block];
         vmask<W> active[per_block], occluded[per_block];
         HitPacket<W> hits[per_block];
-        for (size_t b = first; b < last; b += max_block_rays) {
+        for (size_t b = first; b < last; b += max_block_rays) {  // chunks hold whole blocks
             int count = 0;
-            for (size_t i = b; i < std::min(last, b + max_block_rays); i += W, ++count)
-                p[count] =
-                    load_rays<W>(&rays[i], int(std::min<size_t>(W, last - i)), active[count]);
+            for (size_t i = b; i < b + max_block_rays; i += W, ++count)
+                p[count] = load_packet<W>(soa, i, active[count]);
             if (any_hit) {
                 intersect_any_block(w->scene, w->accel, p, active, occluded, count);
                 benchmark::DoNotOptimize(occluded[0]);
