@@ -26,26 +26,6 @@ struct HitPacket {
     vfloat<W> u = vfloat<W>(0.0f), v = vfloat<W>(0.0f);
 };
 
-/// Packs rays[0 .. n) into a packet (n <= W); lanes n .. W - 1 are inactive and hold a benign
-/// ray (the last one with t_max = -1). `active` receives the lanes in use.
-template <int W>
-RayPacket<W> load_rays(const Ray* rays, int n, vmask<W>& active) {
-    alignas(64) float a[8][W];
-    for (int i = 0; i < W; ++i) {
-        const Ray& r = rays[i < n ? i : n - 1];
-        a[0][i] = r.org.x, a[1][i] = r.org.y, a[2][i] = r.org.z;
-        a[3][i] = r.dir.x, a[4][i] = r.dir.y, a[5][i] = r.dir.z;
-        a[6][i] = r.t_min, a[7][i] = i < n ? r.t_max : -1.0f;
-    }
-    active = mask_from_bits<W>(n >= 32 ? ~0u : (1u << n) - 1u);
-    RayPacket<W> p;
-    p.org = load_vec3<W>(a[0], a[1], a[2]);
-    p.dir = load_vec3<W>(a[3], a[4], a[5]);
-    p.t_min = load<W>(a[6]);
-    p.t_max = load<W>(a[7]);
-    return p;
-}
-
 /// Lane i of a packet as a single ray / hit (tests and scalar fallbacks).
 template <int W>
 Ray get_ray(const RayPacket<W>& p, int i) {

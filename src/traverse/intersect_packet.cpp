@@ -453,16 +453,19 @@ namespace {
 struct BlockBounds {
     vec3 org_lo{infinity}, org_hi{-infinity};
     vec3 inv_lo{infinity}, inv_hi{-infinity};
+    float t_min = infinity;                  ///< smallest t_min of the active lanes
     bool usable[3] = {false, false, false};  ///< reciprocals finite and of one sign on this axis
     int dir_neg[3] = {0, 0, 0};              ///< the block's direction signs, for near-first order
 };
 
 template <int W>
-BlockBounds make_block_bounds(const SlabPacket<W>* sr, const vmask<W>* active, int count) {
+BlockBounds make_block_bounds(const RayPacket<W>* rays, const SlabPacket<W>* sr,
+                              const vmask<W>* active, int count) {
     BlockBounds b;
     bool seen = false;
     for (int p = 0; p < count; ++p) {
         if (none(active[p])) continue;
+        b.t_min = std::min(b.t_min, hmin(rays[p].t_min, active[p]));
         const vfloat<W>* org[3] = {&sr[p].org.x, &sr[p].org.y, &sr[p].org.z};
         const vfloat<W>* inv[3] = {&sr[p].inv_dir.x, &sr[p].inv_dir.y, &sr[p].inv_dir.z};
         for (int k = 0; k < 3; ++k) {
@@ -485,10 +488,11 @@ BlockBounds make_block_bounds(const SlabPacket<W>* sr, const vmask<W>* active, i
     return b;
 }
 
-/// False only when no ray of the block can touch the box at t >= 0: interval arithmetic over
-/// the origins and reciprocals, with a relative margin far above float rounding.
+/// False only when no ray of the block can touch the box at t >= the block's smallest t_min:
+/// interval arithmetic over the origins and reciprocals, with a relative margin far above float
+/// rounding.
 bool block_may_hit(const BlockBounds& b, const BvhNode& node) {
-    float t0 = 0.0f, t1 = infinity;
+    float t0 = b.t_min, t1 = infinity;
     for (int k = 0; k < 3; ++k) {
         if (!b.usable[k]) continue;
         const bool neg = b.inv_hi[k] < 0.0f;
@@ -571,7 +575,7 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
                                          static_cast<vint<W>*>(nullptr));
     if (accel.top.nodes.empty()) return;
     for (int p = 0; p < count; ++p) limit[p] = t_limit(rays[p], hits[p]);
-    const BlockBounds bounds = make_block_bounds(sr, active, count);
+    const BlockBounds bounds = make_block_bounds(rays, sr, active, count);
     auto test = [&](int p, const BvhNode& node) {
         vfloat<W> t_near;
         return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
@@ -644,7 +648,7 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
         open[p] = mask_andnot(active[p], occluded[p]);
     }
     if (accel.top.nodes.empty()) return;
-    const BlockBounds bounds = make_block_bounds(sr, open, count);
+    const BlockBounds bounds = make_block_bounds(rays, sr, open, count);
     auto test = [&](int p, const BvhNode& node) {
         vfloat<W> t_near;
         return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),

@@ -300,6 +300,38 @@ TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
     EXPECT_EQ(any_block_mismatches<W>(*l, rays, blocked), 0u);
 }
 
+/// The camera's rays reversed, searching behind their origin (t in (-1e4, 0)): block culling
+/// must not assume t >= 0.
+TYPED_TEST(IntersectPacket, BlocksHandleNegativeIntervals) {
+    constexpr int W = TypeParam::value;
+    for (const char* name : {"dragon", "builtin"}) {
+        const std::shared_ptr<Loaded> l = load(name);
+        if (!l) continue;
+        Camera cam = l->scene.camera;
+        cam.width = 160;
+        cam.height = 90;
+        const CameraFrame frame = make_camera_frame(cam);
+        std::vector<Ray> rays;
+        for (int y = 0; y < cam.height; ++y) {
+            for (int x = 0; x < cam.width; ++x) {
+                const Ray r = camera_ray(frame, float(x) + 0.5f, float(y) + 0.5f);
+                rays.push_back({r.org, -r.dir, -1e4f, 0.0f});
+            }
+        }
+        std::vector<Hit> want(rays.size());
+        std::vector<uint8_t> blocked(rays.size());
+        size_t hits = 0;
+        for (size_t i = 0; i < rays.size(); ++i) {
+            want[i] = intersect_closest(l->scene, l->accel, rays[i]);
+            blocked[i] = intersect_any(l->scene, l->accel, rays[i]);
+            hits += want[i].hit();
+        }
+        EXPECT_GT(hits, rays.size() / 4) << name;
+        EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want), 0u) << name;
+        EXPECT_EQ(any_block_mismatches<W>(*l, rays, blocked), 0u) << name;
+    }
+}
+
 TYPED_TEST(IntersectPacket, NoActiveLanesMeansNoHits) {
     constexpr int W = TypeParam::value;
     const std::shared_ptr<Loaded> l = load("builtin");
