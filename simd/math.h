@@ -39,6 +39,19 @@ inline PFloat<A> sqrt(const PFloat<A>& v) {
     return xsimd::sqrt(v);
 }
 
+/// cos and sin in radians: std:: at W = 1, xsimd's vectorised versions for packets (a few ulps
+/// from std::; used for sampling positions, never for hit decisions).
+inline float cos(float v) { return std::cos(v); }
+template <class A>
+inline PFloat<A> cos(const PFloat<A>& v) {
+    return xsimd::cos(v);
+}
+inline float sin(float v) { return std::sin(v); }
+template <class A>
+inline PFloat<A> sin(const PFloat<A>& v) {
+    return xsimd::sin(v);
+}
+
 /// -v by flipping the sign bit, at every W: neg(+0) = -0, and NaN changes sign too.
 inline float neg(float v) { return -v; }
 template <class A>

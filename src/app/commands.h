@@ -13,6 +13,7 @@ namespace raylane {
 void add_render_command(CLI::App& app, int& exit_code);
 void add_info_command(CLI::App& app, int& exit_code);
 void add_compare_command(CLI::App& app, int& exit_code);
+void add_report_command(CLI::App& app, int& exit_code);
 
 /// Applies --width/--height to the camera; one alone keeps the aspect ratio.
 void apply_resolution(Camera& camera, int width, int height);

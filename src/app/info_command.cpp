@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "scene/features.h"
 
 namespace raylane {
 namespace {
@@ -33,7 +34,9 @@ int run_info(const std::string& path) {
         "%zu meshes)\n",
         scene.objects.size(), scene.spheres.size(), scene.boxes.size(), scene.cylinders.size(),
         scene.planes.size(), scene.triangles.size(), scene.meshes.size());
-    std::printf("materials  %zu, lights %zu\n", scene.materials.size(), scene.lights.size());
+    std::printf("materials  %zu, lights %zu, textures %zu\n", scene.materials.size(),
+                scene.lights.size(), scene.textures.size());
+    std::printf("features   %s\n", feature_names(scene_features(scene)).c_str());
     std::printf("triangles  %zu\n", count_triangles(scene));
     size_t total = 0;
     for (size_t i = 0; i < accel.meshes.size(); ++i) {

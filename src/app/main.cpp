@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     raylane::add_render_command(app, exit_code);
     raylane::add_info_command(app, exit_code);
     raylane::add_compare_command(app, exit_code);
+    raylane::add_report_command(app, exit_code);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

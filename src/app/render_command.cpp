@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "scene/features.h"
 #include "simd/simd.h"
 
 namespace raylane {
@@ -51,8 +52,11 @@ int run_render(const RenderOptions& o) {
     RenderResult result = o.path == "scalar" ? render_scalar(scene, accel, params)
                                              : render_packet(scene, accel, params);
     const std::string output = o.output.empty() ? default_output(o) : o.output;
-    const Film film = visualise_aov(result.film, params.aov);
-    write_image(output, film, params.aov == Aov::color ? Encoding::srgb : Encoding::linear);
+    const bool colour = params.aov == Aov::color;
+    const bool report_look = colour && scene.tonemap == Tonemap::report;
+    const Film film =
+        report_look ? hue_preserving_clamp(result.film) : visualise_aov(result.film, params.aov);
+    write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
 
     const RenderStats& s = result.stats;
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
@@ -63,9 +67,17 @@ int run_render(const RenderOptions& o) {
         std::printf("path       scalar, %d threads\n", threads);
     else
         std::printf("path       packet (W = %d), %d threads\n", native_width, threads);
-    std::printf("rays       %llu primary, %llu shadow\n",
+    std::printf("features   %s\n", feature_names(scene_features(scene)).c_str());
+    std::printf("rays       %llu primary, %llu shadow",
                 static_cast<unsigned long long>(s.primary_rays),
                 static_cast<unsigned long long>(s.shadow_rays));
+    if (s.reflection_rays > 0)
+        std::printf(", %llu reflection", static_cast<unsigned long long>(s.reflection_rays));
+    if (s.refraction_rays > 0)
+        std::printf(", %llu refraction", static_cast<unsigned long long>(s.refraction_rays));
+    if (s.glossy_rays > 0)
+        std::printf(", %llu glossy", static_cast<unsigned long long>(s.glossy_rays));
+    std::printf("\n");
     std::printf("time       load %.1f ms, build %.1f ms, render %.1f ms\n", load_ms, build_ms,
                 1000.0 * s.seconds);
     std::printf("speed      %.2f Mrays/s\n",

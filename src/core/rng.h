@@ -40,4 +40,25 @@ enum SampleDim : uint32_t {
     dim_first_free = 4,
 };
 
+/// What a random number at a hit is for (the `purpose` of path_dim and child_key).
+enum Purpose : uint32_t {
+    purpose_light = 1,    ///< index = light << 16 | sample, coord 0..2
+    purpose_glossy = 2,   ///< index = glossy ray, coord 0..1
+    purpose_mirror = 3,   ///< child key of a mirror ray
+    purpose_reflect = 4,  ///< child key of a glass reflection
+    purpose_refract = 5,  ///< child key of a refracted ray
+};
+
+/// The key of a child ray in the path tree (the camera ray has key 0). Both paths derive every
+/// random number at a hit from its ray's key, so a path draws the same numbers in either.
+inline uint32_t child_key(uint32_t parent, uint32_t purpose, uint32_t index) {
+    return hash_u32(parent ^ hash_u32((purpose << 28) ^ index ^ 0x68e31da4u));
+}
+
+/// The sample dimension of random number `coord` for (purpose, index) at the hit of ray `key`.
+/// The top bit is set, so it never collides with the camera's dimensions (0 to 3).
+inline uint32_t path_dim(uint32_t key, uint32_t purpose, uint32_t index, uint32_t coord) {
+    return hash_u32(key ^ hash_u32((purpose << 28) ^ (index << 2) ^ coord)) | 0x80000000u;
+}
+
 }  // namespace raylane

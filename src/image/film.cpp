@@ -107,4 +107,14 @@ vec3 false_colour(float x) {
     return stops[i] * (1.0f - f) + stops[i + 1] * f;
 }
 
+Film hue_preserving_clamp(const Film& film) {
+    Film out = film;
+    for (vec3& c : out.pixels) {
+        for (int k = 0; k < 3; ++k) c[k] = c[k] > 0.0f ? c[k] : 0.0f;  // NaN too
+        const float m = std::max(c.x, std::max(c.y, c.z));
+        if (m > 1.0f) c /= m;
+    }
+    return out;
+}
+
 }  // namespace raylane

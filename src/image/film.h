@@ -35,6 +35,10 @@ void write_pfm(const std::string& path, const Film& film);
 /// Writes PNG or PFM by the file extension (.png, .pfm).
 void write_image(const std::string& path, const Film& film, Encoding encoding);
 
+/// The report's tone mapping (report-scenes.md 1.3): a pixel whose largest channel exceeds 1
+/// is divided by it (hue kept); negative and NaN channels become 0. Write it linear (no gamma).
+Film hue_preserving_clamp(const Film& film);
+
 /// False colour for a cost in [0, 1]: dark blue, through green and yellow, to white.
 vec3 false_colour(float x);
 

@@ -13,16 +13,19 @@
 #include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 #include <system_error>
 #include <utility>
 #include <vector>
 
 #include "core/error.h"
+#include "io/load_image.h"
 #include "io/load_mesh.h"
 #include "io/model_path.h"
 #include "scene/mesh_normals.h"
 #include "scene/transform.h"
+#include "shade/brdf_presets.h"
 
 namespace raylane {
 
@@ -273,8 +276,8 @@ class SceneReader {
 
     Scene read(const Json& root) {
         Node top{&root, "$"};
-        expect_keys(top, {"version", "description", "camera", "background", "materials", "objects",
-                          "lights"});
+        expect_keys(top, {"version", "description", "camera", "background", "environment",
+                          "shading", "tonemap", "materials", "objects", "lights"});
         Scene scene;
         scene.source = file_;
         if (const Json* v = find(top, "version")) {
@@ -290,12 +293,23 @@ class SceneReader {
         if (const Json* v = find(top, "background")) {
             scene.background = color(Node{v, "$.background"});
         }
+        if (const Json* v = find(top, "environment")) {
+            scene.environment = read_texture(Node{v, "$.environment"}, scene);
+        }
+        if (const Json* v = find(top, "shading")) {
+            scene.shading = read_shading(Node{v, "$.shading"});
+        }
+        if (const Json* v = find(top, "tonemap")) {
+            scene.tonemap = choice(Node{v, "$.tonemap"}, {"srgb", "report"}) == 0 ? Tonemap::srgb
+                                                                                  : Tonemap::report;
+        }
         if (const Json* v = find(top, "materials")) read_materials(Node{v, "$.materials"}, scene);
         if (const Json* v = find(top, "lights")) {
             Node lights{v, "$.lights"};
             expect(lights, lights.j->is_array(), "an array");
             for (size_t i = 0; i < v->size(); ++i) {
-                scene.lights.push_back(read_light(Node{&(*v)[i], element_path(lights.path, i)}));
+                scene.lights.push_back(
+                    read_light(Node{&(*v)[i], element_path(lights.path, i)}, scene));
             }
         }
         if (const Json* v = find(top, "objects")) {
@@ -311,7 +325,8 @@ class SceneReader {
   private:
     std::string file_;
     std::string dir_;
-    std::map<std::string, Mesh> meshes_;  ///< loaded meshes by resolved path, before baking
+    std::map<std::string, Mesh> meshes_;       ///< loaded meshes by resolved path, before baking
+    std::map<std::string, int32_t> textures_;  ///< texture index by file and options
 
     [[noreturn]] void fail(const Node& n, const std::string& reason) const {
         throw InputError(file_ + ": " + n.path + ": " + reason);
@@ -415,7 +430,8 @@ class SceneReader {
     }
 
     Camera read_camera(const Node& n) const {
-        expect_keys(n, {"position", "look_at", "up", "fov_deg", "fov_axis", "resolution", "spp"});
+        expect_keys(n, {"position", "look_at", "up", "fov_deg", "fov_axis", "resolution", "spp",
+                        "lens_radius", "focal_distance"});
         Camera c;
         c.position = point(child(n, "position"));
         Node look = child(n, "look_at");
@@ -441,6 +457,13 @@ class SceneReader {
         }
         glm::dvec3 view = glm::dvec3(c.look_at) - glm::dvec3(c.position);
         if (!(glm::length(view) > 0.0)) fail(look, "must differ from the camera position");
+        c.focal_distance = float(glm::length(view));
+        if (const Json* v = find(n, "lens_radius")) {
+            c.lens_radius = real(Node{v, member_path(n.path, "lens_radius")}, Sign::non_negative);
+        }
+        if (const Json* v = find(n, "focal_distance")) {
+            c.focal_distance = real(Node{v, member_path(n.path, "focal_distance")}, Sign::positive);
+        }
         glm::dvec3 side = glm::cross(glm::normalize(view), glm::normalize(glm::dvec3(c.up)));
         if (!(glm::length(side) > 1e-6)) {
             fail(find(n, "up") ? child(n, "up") : look, "the view direction is parallel to up");
@@ -448,59 +471,357 @@ class SceneReader {
         return c;
     }
 
-    void read_materials(const Node& n, Scene& scene) const {
+    /// A texture given as a file name, {"file", "filter", "encoding", "repeat"} or
+    /// {"checker": [colour a, colour b], "checks"}; loaded once per file and options.
+    int32_t read_texture(const Node& n, Scene& scene) {
+        Texture options;
+        ImageEncoding encoding = ImageEncoding::linear;
+        std::string file;
+        if (n.j->is_string()) {
+            file = text(n);
+        } else {
+            expect_keys(n, {"file", "filter", "encoding", "repeat", "checker", "checks"});
+            if (const Json* v = find(n, "checker")) {
+                if (find(n, "file"))
+                    fail(child(n, "file"), "give either file or checker, not both");
+                Node c{v, member_path(n.path, "checker")};
+                expect(c, v->is_array() && v->size() == 2, "an array of two colours");
+                float checks = 8.0f;
+                if (const Json* k = find(n, "checks")) {
+                    checks = real(Node{k, member_path(n.path, "checks")}, Sign::positive);
+                }
+                scene.textures.push_back(
+                    make_checker(color(Node{&(*v)[0], element_path(c.path, 0)}),
+                                 color(Node{&(*v)[1], element_path(c.path, 1)}), checks));
+                return int32_t(scene.textures.size() - 1);
+            }
+            if (find(n, "checks")) fail(child(n, "checks"), "only goes with \"checker\"");
+            file = text(child(n, "file"));
+            if (const Json* v = find(n, "filter")) {
+                options.filter =
+                    choice(Node{v, member_path(n.path, "filter")}, {"bilinear", "nearest"}) == 0
+                        ? TextureFilter::bilinear
+                        : TextureFilter::nearest;
+            }
+            if (const Json* v = find(n, "encoding")) {
+                encoding = choice(Node{v, member_path(n.path, "encoding")}, {"linear", "srgb"}) == 0
+                               ? ImageEncoding::linear
+                               : ImageEncoding::srgb;
+            }
+            if (const Json* v = find(n, "repeat")) {
+                options.repeat = boolean(Node{v, member_path(n.path, "repeat")});
+            }
+        }
+        Node file_node = n.j->is_string() ? n : child(n, "file");
+        std::string resolved;
+        try {
+            resolved = find_model(file, dir_);
+        } catch (const InputError& e) {
+            fail(file_node, e.what());
+        }
+        const std::string key = resolved + (encoding == ImageEncoding::srgb ? "|srgb" : "|lin") +
+                                (options.filter == TextureFilter::nearest ? "|n" : "|b") +
+                                (options.repeat ? "|r" : "|c");
+        if (auto it = textures_.find(key); it != textures_.end()) return it->second;
+        Texture t;
+        try {
+            t = load_texture(resolved, encoding);
+        } catch (const InputError& e) {
+            fail(file_node, e.what());
+        }
+        t.filter = options.filter;
+        t.repeat = options.repeat;
+        scene.textures.push_back(std::move(t));
+        textures_[key] = int32_t(scene.textures.size() - 1);
+        return textures_[key];
+    }
+
+    ShadingOptions read_shading(const Node& n) const {
+        expect_keys(n, {"brdf", "max_reflection_depth", "max_refraction_depth", "local",
+                        "reflection", "refraction", "fresnel", "reflected_color"});
+        ShadingOptions o;
+        if (const Json* v = find(n, "brdf")) {
+            o.brdf = choice(Node{v, member_path(n.path, "brdf")}, {"physical", "report"}) == 0
+                         ? BrdfScaling::physical
+                         : BrdfScaling::report;
+        }
+        if (const Json* v = find(n, "max_reflection_depth")) {
+            o.max_reflection_depth =
+                integer(Node{v, member_path(n.path, "max_reflection_depth")}, 0, max_path_depth);
+        }
+        if (const Json* v = find(n, "max_refraction_depth")) {
+            o.max_refraction_depth =
+                integer(Node{v, member_path(n.path, "max_refraction_depth")}, 0, max_path_depth);
+        }
+        if (const Json* v = find(n, "local"))
+            o.local = boolean(Node{v, member_path(n.path, "local")});
+        if (const Json* v = find(n, "reflection")) {
+            o.reflection = boolean(Node{v, member_path(n.path, "reflection")});
+        }
+        if (const Json* v = find(n, "refraction")) {
+            o.refraction = boolean(Node{v, member_path(n.path, "refraction")});
+        }
+        if (const Json* v = find(n, "fresnel")) {
+            o.fresnel = boolean(Node{v, member_path(n.path, "fresnel")});
+        }
+        if (const Json* v = find(n, "reflected_color")) {
+            o.override_reflected = true;
+            o.reflected_color = color(Node{v, member_path(n.path, "reflected_color")});
+        }
+        return o;
+    }
+
+    void read_materials(const Node& n, Scene& scene) {
         expect(n, n.j->is_object(), "an object");
         for (auto it = n.j->begin(); it != n.j->end(); ++it) {
             Node m{&it.value(), member_path(n.path, it.key())};
             if (it.key().empty()) fail(m, "a material name must not be empty");
-            expect_keys(m, {"c_d", "k_d", "k_a", "c_s", "k_s", "exponent"});
-            Material mat;
-            mat.name = it.key();
-            if (const Json* v = find(m, "c_d")) {
-                mat.c_d = color(Node{v, member_path(m.path, "c_d")});
-            }
-            if (const Json* v = find(m, "k_d")) {
-                mat.k_d = real(Node{v, member_path(m.path, "k_d")}, Sign::non_negative);
-            }
-            if (const Json* v = find(m, "k_a")) {
-                mat.k_a = real(Node{v, member_path(m.path, "k_a")}, Sign::non_negative);
-            }
-            if (const Json* v = find(m, "c_s")) {
-                mat.c_s = color(Node{v, member_path(m.path, "c_s")});
-            }
-            if (const Json* v = find(m, "k_s")) {
-                mat.k_s = real(Node{v, member_path(m.path, "k_s")}, Sign::non_negative);
-            }
-            if (const Json* v = find(m, "exponent")) {
-                mat.exponent = real(Node{v, member_path(m.path, "exponent")}, Sign::non_negative);
-            }
-            scene.materials.push_back(std::move(mat));
+            scene.materials.push_back(read_material(m, it.key(), scene));
         }
     }
 
-    Light read_light(const Node& n) const {
+    Material read_material(const Node& m, const std::string& name, Scene& scene) {
+        expect_keys(m, {"model",
+                        "preset",
+                        "merl_colour",
+                        "c_d",
+                        "k_d",
+                        "k_a",
+                        "c_s",
+                        "k_s",
+                        "exponent",
+                        "alpha",
+                        "glossy_samples",
+                        "texture",
+                        "texture_specular",
+                        "reflection",
+                        "k_a_after",
+                        "fresnel",
+                        "refraction",
+                        "env_map",
+                        "normal_map",
+                        "normal_map_mode",
+                        "emission"});
+        Material mat;
+        mat.name = name;
+        auto path = [&](std::string_view key) { return member_path(m.path, key); };
+        if (const Json* v = find(m, "model")) {
+            constexpr SpecularModel models[] = {SpecularModel::phong, SpecularModel::glossy_phong,
+                                                SpecularModel::blinn_phong, SpecularModel::ward,
+                                                SpecularModel::ward_duer};
+            mat.model =
+                models[choice(Node{v, path("model")},
+                              {"phong", "glossy-phong", "blinn-phong", "ward", "ward-duer"})];
+        }
+        if (const Json* v = find(m, "preset")) {
+            Node p{v, path("preset")};
+            bool merl = false;
+            if (const Json* c = find(m, "merl_colour"))
+                merl = boolean(Node{c, path("merl_colour")});
+            if (!apply_brdf_preset(text(p), mat, merl)) {
+                std::vector<std::string> names = brdf_preset_names();
+                fail(p, "no fitted " + json_quoted(text(p)) +
+                            " for this model (presets exist for ward, ward-duer and blinn-phong: " +
+                            join(names, names.size()) + ")");
+            }
+        } else if (find(m, "merl_colour")) {
+            fail(child(m, "merl_colour"), "only goes with \"preset\"");
+        }
+        if (const Json* v = find(m, "c_d")) mat.c_d = color(Node{v, path("c_d")});
+        if (const Json* v = find(m, "k_d"))
+            mat.k_d = real(Node{v, path("k_d")}, Sign::non_negative);
+        if (const Json* v = find(m, "k_a"))
+            mat.k_a = real(Node{v, path("k_a")}, Sign::non_negative);
+        if (const Json* v = find(m, "c_s")) mat.c_s = color(Node{v, path("c_s")});
+        if (const Json* v = find(m, "k_s"))
+            mat.k_s = real(Node{v, path("k_s")}, Sign::non_negative);
+        if (const Json* v = find(m, "exponent")) {
+            Node e{v, path("exponent")};
+            mat.exponent = real(e, Sign::non_negative);
+            if (mat.exponent > 1e7f) fail(e, "must be at most 1e7");
+        }
+        if (const Json* v = find(m, "alpha")) {
+            Node a{v, path("alpha")};
+            mat.alpha = real(a, Sign::positive);
+            if (mat.alpha < 1e-4f || mat.alpha > 1.0f) fail(a, "must be from 1e-4 to 1");
+        }
+        if (const Json* v = find(m, "glossy_samples")) {
+            mat.glossy_samples = integer(Node{v, path("glossy_samples")}, 1, 4096);
+        }
+        if (const Json* v = find(m, "texture"))
+            mat.texture = read_texture(Node{v, path("texture")}, scene);
+        if (const Json* v = find(m, "texture_specular")) {
+            mat.texture_specular = boolean(Node{v, path("texture_specular")});
+        }
+        if (const Json* v = find(m, "reflection")) {
+            Node r{v, path("reflection")};
+            mat.reflection = real(r, Sign::non_negative);
+            if (mat.reflection > 2.0f) fail(r, "must be from 0 to 2");
+        }
+        if (const Json* v = find(m, "k_a_after")) {
+            mat.k_a_after = real(Node{v, path("k_a_after")}, Sign::non_negative);
+        }
+        if (const Json* v = find(m, "fresnel")) mat.fresnel = boolean(Node{v, path("fresnel")});
+        if (const Json* v = find(m, "refraction")) {
+            Node r{v, path("refraction")};
+            expect_keys(r, {"ior", "filter"});
+            mat.refractive = true;
+            if (const Json* i = find(r, "ior")) {
+                Node ior{i, member_path(r.path, "ior")};
+                mat.ior = real(ior, Sign::positive);
+                if (mat.ior < 1e-3f || mat.ior > 1e3f) fail(ior, "must be from 0.001 to 1000");
+            }
+            if (const Json* f = find(r, "filter")) {
+                Node fn{f, member_path(r.path, "filter")};
+                mat.filter = color(fn);
+                if (mat.filter.x > 1.0f || mat.filter.y > 1.0f || mat.filter.z > 1.0f) {
+                    fail(fn,
+                         "must be at most 1 in every channel (a transmittance per unit length)");
+                }
+            }
+        }
+        if (const Json* v = find(m, "env_map"))
+            mat.env_map = read_texture(Node{v, path("env_map")}, scene);
+        if (const Json* v = find(m, "normal_map")) {
+            mat.normal_map = read_texture(Node{v, path("normal_map")}, scene);
+        }
+        if (const Json* v = find(m, "normal_map_mode")) {
+            mat.normal_map_mode =
+                choice(Node{v, path("normal_map_mode")}, {"tangent", "replace"}) == 0
+                    ? NormalMapMode::tangent
+                    : NormalMapMode::replace;
+        }
+        if (const Json* v = find(m, "emission")) mat.emission = color(Node{v, path("emission")});
+        return mat;
+    }
+
+    Light read_light(const Node& n, Scene& scene) {
         expect(n, n.j->is_object(), "an object");
-        int type = choice(child(n, "type"), {"point", "directional"});
+        int type = choice(child(n, "type"), {"point", "directional", "rect", "disk", "box"});
         Light light;
-        if (type == 0) {
-            expect_keys(n, {"type", "position", "color", "intensity", "shadows"});
-            light.kind = LightKind::point;
-            light.position = point(child(n, "position"));
-        } else {
-            expect_keys(n, {"type", "direction", "color", "intensity", "shadows"});
-            light.kind = LightKind::directional;
-            light.direction = direction(child(n, "direction"));
+        constexpr LightKind kinds[] = {LightKind::point, LightKind::directional, LightKind::rect,
+                                       LightKind::disk, LightKind::box};
+        light.kind = kinds[type];
+        auto path = [&](std::string_view key) { return member_path(n.path, key); };
+        switch (light.kind) {
+            case LightKind::point:
+                expect_keys(n, {"type", "position", "color", "intensity", "shadows"});
+                light.position = point(child(n, "position"));
+                break;
+            case LightKind::directional:
+                expect_keys(n, {"type", "direction", "color", "intensity", "shadows"});
+                light.direction = direction(child(n, "direction"));
+                break;
+            case LightKind::rect: {
+                expect_keys(n, {"type", "corner", "edge_u", "edge_v", "color", "intensity",
+                                "shadows", "samples", "visible"});
+                light.position = point(child(n, "corner"));
+                light.edge_u = point(child(n, "edge_u"));
+                Node ev = child(n, "edge_v");
+                light.edge_v = point(ev);
+                if (!(glm::length(glm::cross(light.edge_u, light.edge_v)) > 0.0f)) {
+                    fail(ev, "the rectangle has zero area (edges parallel or zero)");
+                }
+                break;
+            }
+            case LightKind::disk:
+                expect_keys(n, {"type", "center", "normal", "radius", "color", "intensity",
+                                "shadows", "samples", "visible"});
+                light.position = point(child(n, "center"));
+                light.direction = direction(child(n, "normal"));
+                light.radius = real(child(n, "radius"), Sign::positive);
+                break;
+            case LightKind::box: {
+                expect_keys(n, {"type", "min", "max", "color", "intensity", "shadows", "samples",
+                                "visible"});
+                Node hi = child(n, "max");
+                light.position = point(child(n, "min"));
+                const vec3 top = point(hi);
+                if (!(light.position.x <= top.x && light.position.y <= top.y &&
+                      light.position.z <= top.z)) {
+                    fail(hi, "must be >= min in every component");
+                }
+                light.edge_u = top - light.position;
+                break;
+            }
         }
-        if (const Json* v = find(n, "color")) {
-            light.color = color(Node{v, member_path(n.path, "color")});
-        }
+        if (const Json* v = find(n, "color")) light.color = color(Node{v, path("color")});
         if (const Json* v = find(n, "intensity")) {
-            light.intensity = real(Node{v, member_path(n.path, "intensity")}, Sign::non_negative);
+            light.intensity = real(Node{v, path("intensity")}, Sign::non_negative);
         }
-        if (const Json* v = find(n, "shadows")) {
-            light.shadows = boolean(Node{v, member_path(n.path, "shadows")});
+        if (const Json* v = find(n, "shadows")) light.shadows = boolean(Node{v, path("shadows")});
+        if (light.is_area()) {
+            light.samples = 16;
+            if (const Json* v = find(n, "samples")) {
+                light.samples = integer(Node{v, path("samples")}, 1, 4096);
+            }
+            bool visible = true;
+            if (const Json* v = find(n, "visible")) visible = boolean(Node{v, path("visible")});
+            if (visible) add_emitter(light, scene);
         }
         return light;
+    }
+
+    /// The visible stand-in of an area light (report-scenes.md 1.4): an object of emitted
+    /// radiance colour * intensity / (4 pi A) that casts no shadows. A is the report's "2ab":
+    /// twice the area of a rectangle or disc, 2ab for a box with a, b its two largest extents.
+    static void add_emitter(const Light& light, Scene& scene) {
+        Material m;
+        m.name = "<area light " + std::to_string(scene.lights.size()) + ">";
+        Object o;
+        o.casts_shadows = false;
+        o.material = uint32_t(scene.materials.size());
+        double area = 0.0;
+        Transform t;
+        switch (light.kind) {
+            case LightKind::rect: {
+                area = 2.0 *
+                       glm::length(glm::cross(glm::dvec3(light.edge_u), glm::dvec3(light.edge_v)));
+                const vec3 p = light.position, u = light.edge_u, v = light.edge_v;
+                const Triangle tris[2] = {{p, p + u, p + u + v}, {p, p + u + v, p + v}};
+                for (const Triangle& tri : tris) {
+                    o.kind = ShapeKind::triangle;
+                    o.shape = uint32_t(scene.triangles.size());
+                    scene.triangles.push_back(tri);
+                    scene.objects.push_back(o);
+                }
+                break;
+            }
+            case LightKind::disk: {
+                const double r = light.radius;
+                area = 2.0 * std::numbers::pi * r * r;
+                // a thin cylinder whose axis (+y) is the disc normal
+                const glm::dvec3 n(light.direction);
+                const glm::dvec3 a =
+                    std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 0, 1);
+                const glm::dvec3 tangent = glm::normalize(glm::cross(n, a));
+                t.rotate = glm::dmat3(tangent, n, glm::cross(tangent, n));
+                const double h = 1e-3 * r;
+                t.translate = glm::dvec3(light.position) - 0.5 * h * n;
+                o.kind = ShapeKind::cylinder;
+                o.shape = uint32_t(scene.cylinders.size());
+                scene.cylinders.push_back(Cylinder{float(r), float(h)});
+                set_transform(o, t);
+                scene.objects.push_back(o);
+                break;
+            }
+            case LightKind::box: {
+                const glm::dvec3 e(light.edge_u);
+                double a = std::max(e.x, e.y), b = std::max(e.x, e.z);
+                if (a == b) b = std::max(e.y, e.z);
+                area = 2.0 * a * b;
+                o.kind = ShapeKind::box;
+                o.shape = uint32_t(scene.boxes.size());
+                scene.boxes.push_back(Box{light.position, light.position + light.edge_u});
+                scene.objects.push_back(o);
+                break;
+            }
+            default:
+                return;
+        }
+        if (!(area > 0.0)) area = 1.0;  // a degenerate box: show it at intensity / 4 pi
+        m.emission = light.color * float(double(light.intensity) / (4.0 * std::numbers::pi * area));
+        scene.materials.push_back(m);
     }
 
     Transform read_transform(const Node& n) const {

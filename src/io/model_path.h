@@ -8,8 +8,9 @@ namespace raylane {
 
 /// The folders find_model searches for a relative name, in order, without duplicates:
 /// `scene_dir` ("." when empty); each non-empty entry of RAYLANE_MODEL_PATH (':'-separated);
-/// RAYLANE_SOURCE_DIR "/../shared/models" (the checkout's sibling); and "../shared/models"
-/// under the current working directory.
+/// RAYLANE_SOURCE_DIR "/../shared/models" and "/../shared/textures" (the checkout's sibling);
+/// and "../shared/models" and "../shared/textures" under the current working directory.
+/// Textures and environment maps are looked up the same way.
 std::vector<std::string> model_search_dirs(const std::string& scene_dir);
 
 /// The path of the model file `name`: `name` itself when absolute, else the first of

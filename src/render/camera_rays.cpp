@@ -22,6 +22,8 @@ CameraFrame make_camera_frame(const Camera& camera) {
     }
     f.inv_width = 1.0f / static_cast<float>(camera.width);
     f.inv_height = 1.0f / static_cast<float>(camera.height);
+    f.lens_radius = camera.lens_radius;
+    f.focal_distance = camera.focal_distance;
     return f;
 }
 

@@ -8,7 +8,9 @@
 
 #include "core/rng.h"
 #include "render/camera_rays_packet.h"
+#include "render/path_queue.h"
 #include "render/tiles.h"
+#include "scene/features.h"
 #include "shade/shade_packet.h"
 #include "simd/hash.h"
 #include "traverse/intersect_packet.h"
@@ -22,11 +24,10 @@ vmask<W> finite(const Vec3<W>& c) {
     return mask_and(mask_and(c.x - c.x == zero, c.y - c.y == zero), c.z - c.z == zero);
 }
 
-/// One sample's values for the requested output, for a block of packets (a tile).
+/// One sample's values of a non-colour AOV, for a block of packets (a tile).
 template <int W>
-void sample_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
-                   const vmask<W>* active, int count, Aov aov, Vec3<W>* value,
-                   ShadeCounts& counts) {
+void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+                const vmask<W>* active, int count, Aov aov, Vec3<W>* value) {
     constexpr int max_packets = max_block_rays / W;
     HitPacket<W> hits[max_packets];
     vmask<W> hit[max_packets];
@@ -40,42 +41,175 @@ void sample_values(const Scene& scene, const Accel& accel, const RayPacket<W>* r
         intersect_closest_block(scene, accel, rays, active, hits, count);
     }
     for (int p = 0; p < count; ++p) hit[p] = mask_and(active[p], hits[p].t < vfloat<W>(infinity));
-    const Vec3<W> background =
-        make_vec3<W>(scene.background.x, scene.background.y, scene.background.z);
     const Vec3<W> black = make_vec3<W>(0.0f, 0.0f, 0.0f);
-    switch (aov) {
-        case Aov::color:
-            shade_hit(scene, accel, rays, hits, hit, count, value, counts);
-            for (int p = 0; p < count; ++p) value[p] = select(hit[p], value[p], background);
-            return;
-        case Aov::normal:
-            for (int p = 0; p < count; ++p)
+    for (int p = 0; p < count; ++p) {
+        switch (aov) {
+            case Aov::color:
+                value[p] = black;
+                break;
+            case Aov::normal:
                 value[p] =
                     any(hit[p])
                         ? select(hit[p], surface_at(scene, rays[p], hits[p], hit[p]).shading_normal,
                                  black)
                         : black;
-            return;
-        case Aov::depth:
-            for (int p = 0; p < count; ++p) {
+                break;
+            case Aov::depth: {
                 const vfloat<W> t = select(hit[p], hits[p].t, vfloat<W>(0.0f));
                 value[p] = {t, t, t};
+                break;
             }
-            return;
-        case Aov::bvh_cost:
-            for (int p = 0; p < count; ++p) {
+            case Aov::bvh_cost: {
                 const vfloat<W> n = to_float(nodes[p]);
                 value[p] = {n, n, n};
+                break;
             }
-            return;
+        }
     }
 }
 
-}  // namespace
+/// A thread's buffers for shading tiles; grown on the first tiles, then reused.
+struct TileBuffers {
+    PathQueue paths, next;
+    HitArrays hits;
+    std::vector<ShadowQueue> shadows;  ///< one per light
+    std::vector<int32_t> order, material_count;
+    int32_t pixel[max_block_rays];
+    float acc_r[max_block_rays], acc_g[max_block_rays], acc_b[max_block_rays];
+};
 
+/// Traces every ray of `q` to its closest hit: the first pass (camera rays, coherent) as blocks,
+/// later passes packet by packet.
 template <int W>
-RenderResult render_packet_width(const Scene& scene, const Accel& accel,
-                                 const RenderParams& params) {
+void trace_queue(const Scene& scene, const Accel& accel, const PathQueue& q, bool coherent,
+                 HitArrays& h) {
+    constexpr int max_packets = max_block_rays / W;
+    h.resize(q.ox.size());
+    RayPacket<W> rays[max_packets];
+    HitPacket<W> hits[max_packets];
+    vmask<W> active[max_packets];
+    for (int base = 0; base < q.size; base += max_block_rays) {
+        const int n = std::min(max_block_rays, q.size - base);
+        const int count = (n + W - 1) / W;
+        for (int p = 0; p < count; ++p) {
+            const size_t i = static_cast<size_t>(base + p * W);
+            const int lanes = std::min(W, n - p * W);
+            active[p] = mask_from_bits<W>(lanes >= 32 ? ~0u : (1u << lanes) - 1u);
+            rays[p].org = load_vec3<W>(&q.ox[i], &q.oy[i], &q.oz[i]);
+            rays[p].dir = load_vec3<W>(&q.dx[i], &q.dy[i], &q.dz[i]);
+            rays[p].t_min = vfloat<W>(0.0f);
+            rays[p].t_max = select(active[p], vfloat<W>(infinity), vfloat<W>(-1.0f));
+        }
+        if (coherent) {
+            intersect_closest_block(scene, accel, rays, active, hits, count);
+        } else {
+            for (int p = 0; p < count; ++p)
+                hits[p] = intersect_closest(scene, accel, rays[p], active[p]);
+        }
+        for (int p = 0; p < count; ++p) {
+            const size_t i = static_cast<size_t>(base + p * W);
+            store(&h.t[i], hits[p].t), store(&h.u[i], hits[p].u), store(&h.v[i], hits[p].v);
+            store(&h.prim[i], hits[p].prim), store(&h.object[i], hits[p].object);
+        }
+    }
+}
+
+/// Traces the shadow queue of one light as blocks and adds the contributions of free segments.
+template <int W>
+void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q, TileBuffers& b) {
+    constexpr int max_packets = max_block_rays / W;
+    RayPacket<W> rays[max_packets];
+    vmask<W> active[max_packets], occluded[max_packets];
+    for (int base = 0; base < q.size; base += max_block_rays) {
+        const int n = std::min(max_block_rays, q.size - base);
+        const int count = (n + W - 1) / W;
+        for (int p = 0; p < count; ++p) {
+            const size_t i = static_cast<size_t>(base + p * W);
+            const int lanes = std::min(W, n - p * W);
+            active[p] = mask_from_bits<W>(lanes >= 32 ? ~0u : (1u << lanes) - 1u);
+            rays[p].org = load_vec3<W>(&q.ox[i], &q.oy[i], &q.oz[i]);
+            rays[p].dir = load_vec3<W>(&q.dx[i], &q.dy[i], &q.dz[i]);
+            rays[p].t_min = vfloat<W>(0.0f);
+            rays[p].t_max = select(active[p], load<W>(&q.t_max[i]), vfloat<W>(-1.0f));
+        }
+        intersect_any_block(scene, accel, rays, active, occluded, count);
+        for (int p = 0; p < count; ++p) {
+            for_each_active(mask_andnot(active[p], occluded[p]), [&](int l) {
+                const size_t i = static_cast<size_t>(base + p * W + l);
+                const size_t s = static_cast<size_t>(q.slot[i]);
+                b.acc_r[s] += q.cr[i];
+                b.acc_g[s] += q.cg[i];
+                b.acc_b[s] += q.cb[i];
+            });
+        }
+    }
+}
+
+/// One sample of colour for every pixel slot of the tile whose camera rays are in b.paths:
+/// passes of trace, Beer's law, misses, sort by material, shade, shadows - until no rays are left.
+template <int W, uint32_t F>
+void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams& params,
+                       int32_t sample, uint32_t seed, TileBuffers& b, ShadeCounts& counts) {
+    const size_t materials = scene.materials.size();
+    if (b.shadows.size() < scene.lights.size()) b.shadows.resize(scene.lights.size());
+    b.material_count.resize(materials + 1);
+    bool first = true;
+    while (b.paths.size > 0) {
+        PathQueue& q = b.paths;
+        trace_queue<W>(scene, accel, q, first, b.hits);
+        first = false;
+        if (b.order.size() < static_cast<size_t>(q.size)) b.order.resize(q.ox.size());
+        // Beer's law over the distance travelled, misses, and the count of hits per material
+        std::fill(b.material_count.begin(), b.material_count.end(), 0);
+        for (int i = 0; i < q.size; ++i) {
+            const size_t r = static_cast<size_t>(i);
+            if constexpr ((F & feature_refraction) != 0) {
+                if (q.fr[r] != 1.0f || q.fg[r] != 1.0f || q.fb[r] != 1.0f) {
+                    const vec3 f = beer_transmittance(vec3(q.fr[r], q.fg[r], q.fb[r]), b.hits.t[r]);
+                    q.wr[r] *= f.x, q.wg[r] *= f.y, q.wb[r] *= f.z;
+                }
+            }
+            if (b.hits.prim[r] < 0) {
+                const vec3 dir(q.dx[r], q.dy[r], q.dz[r]);
+                const vec3 l = miss_radiance(scene, q.env_map[r], dir);
+                const size_t s = static_cast<size_t>(q.slot[r]);
+                b.acc_r[s] += q.wr[r] * l.x, b.acc_g[s] += q.wg[r] * l.y,
+                    b.acc_b[s] += q.wb[r] * l.z;
+                continue;
+            }
+            ++b.material_count[scene.objects[size_t(b.hits.object[r])].material + 1];
+        }
+        // counting sort of the hits by material (stable: tile order within a material)
+        for (size_t m = 1; m <= materials; ++m) b.material_count[m] += b.material_count[m - 1];
+        for (int i = 0; i < q.size; ++i) {
+            const size_t r = static_cast<size_t>(i);
+            if (b.hits.prim[r] < 0) continue;
+            const uint32_t m = scene.objects[size_t(b.hits.object[r])].material;
+            b.order[size_t(b.material_count[m]++)] = i;
+        }
+        // shade each material's hits W at a time (material_count[m] is now the end of m)
+        const ShadeTarget target{b.acc_r, b.acc_g, b.acc_b, b.shadows.data(), &b.next, &counts};
+        int begin = 0;
+        for (size_t m = 0; m < materials; ++m) {
+            const int end = b.material_count[m];
+            for (int i = begin; i < end; i += W) {
+                shade_batch<W, F>(scene, scene.materials[m], params, sample, seed, b.pixel, q,
+                                  b.hits, &b.order[size_t(i)], std::min(W, end - i), target);
+            }
+            begin = end;
+        }
+        for (size_t j = 0; j < scene.lights.size(); ++j) {
+            trace_shadows<W>(scene, accel, b.shadows[j], b);
+            b.shadows[j].clear();
+        }
+        std::swap(b.paths, b.next);
+        b.next.clear();
+    }
+}
+
+template <int W, uint32_t F>
+RenderResult render_packet_features(const Scene& scene, const Accel& accel,
+                                    const RenderParams& params) {
     const auto start = std::chrono::steady_clock::now();
     const Camera& cam = scene.camera;
     const CameraFrame frame = make_camera_frame(cam);
@@ -85,45 +219,84 @@ RenderResult render_packet_width(const Scene& scene, const Accel& accel,
     // a tile is a block: at most max_block_rays pixels, rows a multiple of W wide
     const int tile_size = std::min(params.tile_size, 16);
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, tile_size);
-    std::atomic<uint64_t> shadow_rays{0}, nan_samples{0};
+    std::atomic<uint64_t> shadow_rays{0}, reflection_rays{0}, refraction_rays{0}, glossy_rays{0},
+        nan_samples{0};
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
     const vint<W> lane = lane_index<W>();
+    const ShadeParams shade{params.light_samples, params.glossy_samples};
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
+        thread_local TileBuffers b;
         // the tile as rows of packets of up to W pixels; lanes past its right edge are inactive
         constexpr int max_packets = max_block_rays / W;
         RayPacket<W> rays[max_packets];
         vmask<W> active[max_packets];
-        vint<W> pixel[max_packets], xi[max_packets];
+        vint<W> pixel[max_packets], xi[max_packets], slot[max_packets];
         Vec3<W> sum[max_packets], value[max_packets];
         vfloat<W> good[max_packets], yf[max_packets];
+        const int tile_w = tile.x1 - tile.x0;
         int count = 0;
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x0 = tile.x0; x0 < tile.x1; x0 += W, ++count) {
                 const int lanes = std::min(W, tile.x1 - x0);
-                active[count] = mask_from_bits<W>((1u << lanes) - 1u);
+                active[count] = mask_from_bits<W>(lanes >= 32 ? ~0u : (1u << lanes) - 1u);
                 xi[count] = vint<W>(x0) + lane;
                 yf[count] = vfloat<W>(float(y));
                 pixel[count] = vint<W>(y * cam.width) + xi[count];
+                slot[count] = vint<W>((y - tile.y0) * tile_w - tile.x0) + xi[count];
                 sum[count] = make_vec3<W>(0.0f, 0.0f, 0.0f);
                 good[count] = vfloat<W>(0.0f);
+                for_each_active(active[count], [&](int i) {
+                    b.pixel[get(slot[count], i)] = get(pixel[count], i);
+                });
             }
         }
         ShadeCounts counts;
         uint64_t nans = 0;
         for (int s = 0; s < spp; ++s) {
+            const vint<W> si(s), seed(static_cast<int32_t>(params.seed));
             for (int p = 0; p < count; ++p) {
-                // sample position: the pixel centre, or jittered in the pixel
+                // sample position: the pixel centre, or stratified in the pixel
                 vfloat<W> jx(0.5f), jy(0.5f);
                 if (spp > 1) {
-                    const vint<W> si(s), seed(static_cast<int32_t>(params.seed));
-                    jx = random_float<W>(pixel[p], si, vint<W>(dim_pixel_x), seed);
-                    jy = random_float<W>(pixel[p], si, vint<W>(dim_pixel_y), seed);
+                    stratified_square<W>(
+                        s, spp, random_float<W>(pixel[p], si, vint<W>(dim_pixel_x), seed),
+                        random_float<W>(pixel[p], si, vint<W>(dim_pixel_y), seed), jx, jy);
                 }
-                rays[p] = camera_ray<W>(frame, to_float(xi[p]) + jx, yf[p] + jy);
+                vfloat<W> lu(0.5f), lv(0.5f);
+                if constexpr ((F & feature_lens) != 0) {
+                    if (frame.lens_radius > 0.0f) {
+                        lu = random_float<W>(pixel[p], si, vint<W>(dim_lens_u), seed);
+                        lv = random_float<W>(pixel[p], si, vint<W>(dim_lens_v), seed);
+                    }
+                }
+                rays[p] = camera_ray<W>(frame, to_float(xi[p]) + jx, yf[p] + jy, lu, lv);
                 rays[p].t_max = select(active[p], rays[p].t_max, vfloat<W>(-1.0f));
             }
-            sample_values<W>(scene, accel, rays, active, count, params.aov, value, counts);
+            if (params.aov == Aov::color) {
+                // camera rays into the queue, then passes until every path has ended
+                b.paths.clear();
+                b.paths.reserve_more(count * W);
+                for (int p = 0; p < count; ++p) {
+                    for_each_active(active[p], [&](int i) {
+                        const int32_t sl = get(slot[p], i);
+                        b.acc_r[sl] = b.acc_g[sl] = b.acc_b[sl] = 0.0f;
+                        b.paths.push(vec3(get(rays[p].org.x, i), get(rays[p].org.y, i),
+                                          get(rays[p].org.z, i)),
+                                     vec3(get(rays[p].dir.x, i), get(rays[p].dir.y, i),
+                                          get(rays[p].dir.z, i)),
+                                     vec3(1.0f), vec3(1.0f), sl, 0u, 0, 0, -1, false);
+                    });
+                }
+                shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
+                for (int p = 0; p < count; ++p) {
+                    value[p].x = gather(b.acc_r, slot[p], active[p]);
+                    value[p].y = gather(b.acc_g, slot[p], active[p]);
+                    value[p].z = gather(b.acc_b, slot[p], active[p]);
+                }
+            } else {
+                aov_values<W>(scene, accel, rays, active, count, params.aov, value);
+            }
             for (int p = 0; p < count; ++p) {
                 const vmask<W> ok = mask_and(active[p], finite(value[p]));
                 sum[p] = select(ok, sum[p] + value[p], sum[p]);
@@ -140,15 +313,76 @@ RenderResult render_packet_width(const Scene& scene, const Accel& accel,
             });
         }
         shadow_rays += counts.shadow_rays;
+        reflection_rays += counts.reflection_rays;
+        refraction_rays += counts.refraction_rays;
+        glossy_rays += counts.glossy_rays;
         nan_samples += nans;
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
     result.stats.shadow_rays = shadow_rays;
+    result.stats.reflection_rays = reflection_rays;
+    result.stats.refraction_rays = refraction_rays;
+    result.stats.glossy_rays = glossy_rays;
     result.stats.nan_samples = nan_samples;
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
+}
+
+/// The kernel feature set for a scene: groups of features, so 16 kernels cover every scene.
+uint32_t kernel_features(uint32_t scene) {
+    uint32_t f = 0;
+    if (scene & feature_textures) f |= feature_textures;
+    if (scene & feature_area_lights) f |= feature_area_lights;
+    if (scene & (feature_reflection | feature_refraction | feature_glossy))
+        f |= feature_reflection | feature_refraction | feature_glossy;
+    if (scene & (feature_environment | feature_lens)) f |= feature_environment | feature_lens;
+    return f;
+}
+
+constexpr uint32_t group_secondary = feature_reflection | feature_refraction | feature_glossy;
+constexpr uint32_t group_camera = feature_environment | feature_lens;
+
+/// Calls the kernel compiled for exactly the feature groups in f.
+template <int W>
+RenderResult dispatch(uint32_t f, const Scene& scene, const Accel& accel,
+                      const RenderParams& params) {
+    constexpr uint32_t T = feature_textures, A = feature_area_lights, S = group_secondary,
+                       C = group_camera;
+    switch (f) {
+#define RAYLANE_KERNEL(bits) \
+    case (bits):             \
+        return render_packet_features<W, (bits)>(scene, accel, params);
+        RAYLANE_KERNEL(0)
+        RAYLANE_KERNEL(T)
+        RAYLANE_KERNEL(A)
+        RAYLANE_KERNEL(T | A)
+        RAYLANE_KERNEL(S)
+        RAYLANE_KERNEL(S | T)
+        RAYLANE_KERNEL(S | A)
+        RAYLANE_KERNEL(S | T | A)
+        RAYLANE_KERNEL(C)
+        RAYLANE_KERNEL(C | T)
+        RAYLANE_KERNEL(C | A)
+        RAYLANE_KERNEL(C | T | A)
+        RAYLANE_KERNEL(C | S)
+        RAYLANE_KERNEL(C | S | T)
+        RAYLANE_KERNEL(C | S | A)
+#undef RAYLANE_KERNEL
+        default:
+            return render_packet_features<W, kernel_features_all>(scene, accel, params);
+    }
+}
+
+}  // namespace
+
+template <int W>
+RenderResult render_packet_width(const Scene& scene, const Accel& accel,
+                                 const RenderParams& params) {
+    if (params.generic_kernel || W != native_width)
+        return render_packet_features<W, kernel_features_all>(scene, accel, params);
+    return dispatch<W>(kernel_features(scene_features(scene)), scene, accel, params);
 }
 
 RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderParams& params) {

@@ -20,16 +20,24 @@ struct RenderParams {
     int threads = 0;  ///< 0 = all hardware threads
     uint32_t seed = 0;
     Aov aov = Aov::color;
+    int light_samples = 0;   ///< samples per area light; 0 = each light's own `samples`
+    int glossy_samples = 0;  ///< glossy rays per hit; 0 = each material's own
     int tile_size = 16;
+    bool generic_kernel = false;  ///< packet path: the all-features kernel whatever the scene uses
     bool progress = false;  ///< progress on stderr
 };
 
 struct RenderStats {
     uint64_t primary_rays = 0;
     uint64_t shadow_rays = 0;
+    uint64_t reflection_rays = 0;
+    uint64_t refraction_rays = 0;
+    uint64_t glossy_rays = 0;
     uint64_t nan_samples = 0;  ///< samples that were NaN or infinite: counted, not averaged in
     double seconds = 0.0;
-    uint64_t total_rays() const { return primary_rays + shadow_rays; }
+    uint64_t total_rays() const {
+        return primary_rays + shadow_rays + reflection_rays + refraction_rays + glossy_rays;
+    }
 };
 
 struct RenderResult {

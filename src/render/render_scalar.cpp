@@ -17,13 +17,20 @@ namespace {
 bool finite(vec3 c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
 
 /// One sample's value for the requested output.
-vec3 sample_value(const Scene& scene, const Accel& accel, const Ray& ray, Aov aov,
-                  ShadeCounts& counts) {
+vec3 sample_value(const Scene& scene, const Accel& accel, const Ray& ray, const SampleIndex& index,
+                  const RenderParams& params, ShadeCounts& counts) {
+    if (params.aov == Aov::color) {
+        PathRay path;
+        path.ray = ray;
+        const ShadeParams shade{params.light_samples, params.glossy_samples};
+        return trace_path(scene, accel, path, index, shade, counts).radiance;
+    }
     TraversalStats stats;
-    const Hit hit = intersect_closest(scene, accel, ray, aov == Aov::bvh_cost ? &stats : nullptr);
-    switch (aov) {
+    const Hit hit =
+        intersect_closest(scene, accel, ray, params.aov == Aov::bvh_cost ? &stats : nullptr);
+    switch (params.aov) {
         case Aov::color:
-            return hit.hit() ? shade_hit(scene, accel, ray, hit, counts) : scene.background;
+            return vec3(0.0f);
         case Aov::normal:
             return hit.hit() ? surface_at(scene, ray, hit).shading_normal : vec3(0.0f);
         case Aov::depth:
@@ -44,7 +51,8 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     result.film = make_film(cam.width, cam.height);
     const int spp = params.spp > 0 ? params.spp : 1;
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size);
-    std::atomic<uint64_t> shadow_rays{0}, nan_samples{0};
+    std::atomic<uint64_t> shadow_rays{0}, reflection_rays{0}, refraction_rays{0}, glossy_rays{0},
+        nan_samples{0};
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
@@ -56,16 +64,23 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
                 vec3 sum(0.0f);
                 int good = 0;
                 for (int s = 0; s < spp; ++s) {
-                    // sample position: the pixel centre, or jittered in the pixel
-                    float jx = 0.5f, jy = 0.5f;
+                    // sample position: the pixel centre, or stratified in the pixel
+                    const uint32_t si = static_cast<uint32_t>(s);
+                    vec2 j(0.5f);
                     if (spp > 1) {
-                        const uint32_t si = static_cast<uint32_t>(s);
-                        jx = random_float(pixel, si, dim_pixel_x, params.seed);
-                        jy = random_float(pixel, si, dim_pixel_y, params.seed);
+                        j = stratified_square(s, spp,
+                                              random_float(pixel, si, dim_pixel_x, params.seed),
+                                              random_float(pixel, si, dim_pixel_y, params.seed));
                     }
-                    const Ray ray =
-                        camera_ray(frame, static_cast<float>(x) + jx, static_cast<float>(y) + jy);
-                    const vec3 value = sample_value(scene, accel, ray, params.aov, counts);
+                    float lu = 0.5f, lv = 0.5f;
+                    if (frame.lens_radius > 0.0f) {
+                        lu = random_float(pixel, si, dim_lens_u, params.seed);
+                        lv = random_float(pixel, si, dim_lens_v, params.seed);
+                    }
+                    const Ray ray = camera_ray(frame, static_cast<float>(x) + j.x,
+                                               static_cast<float>(y) + j.y, lu, lv);
+                    const SampleIndex index{pixel, si, params.seed};
+                    const vec3 value = sample_value(scene, accel, ray, index, params, counts);
                     if (finite(value)) {
                         sum += value;
                         ++good;
@@ -77,11 +92,17 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
             }
         }
         shadow_rays += counts.shadow_rays;
+        reflection_rays += counts.reflection_rays;
+        refraction_rays += counts.refraction_rays;
+        glossy_rays += counts.glossy_rays;
         nan_samples += nans;
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
     result.stats.shadow_rays = shadow_rays;
+    result.stats.reflection_rays = reflection_rays;
+    result.stats.refraction_rays = refraction_rays;
+    result.stats.glossy_rays = glossy_rays;
     result.stats.nan_samples = nan_samples;
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

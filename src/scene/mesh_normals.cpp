@@ -27,4 +27,17 @@ void drop_normals(Mesh& mesh) {
     mesh.normal_tris.clear();
 }
 
+vec3 triangle_dpdu(const Mesh& mesh, uint32_t prim) {
+    if (mesh.uv_tris.empty()) return vec3(0.0f);
+    const uvec3 t = mesh.tris[prim], ut = mesh.uv_tris[prim];
+    const vec3 e1 = mesh.positions[t.y] - mesh.positions[t.x];
+    const vec3 e2 = mesh.positions[t.z] - mesh.positions[t.x];
+    const vec2 d1 = mesh.uvs[ut.y] - mesh.uvs[ut.x];
+    const vec2 d2 = mesh.uvs[ut.z] - mesh.uvs[ut.x];
+    const float det = d1.x * d2.y - d1.y * d2.x;
+    if (!(std::fabs(det) > 0.0f)) return vec3(0.0f);
+    const vec3 dpdu = (d2.y * e1 - d1.y * e2) / det;
+    return std::isfinite(dpdu.x + dpdu.y + dpdu.z) ? dpdu : vec3(0.0f);
+}
+
 }  // namespace raylane

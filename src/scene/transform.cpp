@@ -91,6 +91,7 @@ void bake_transform(Mesh& mesh, const glm::dmat4& world_from_object) {
     for (vec3& p : mesh.positions) p = vec3(linear * glm::dvec3(p) + shift);
 
     glm::dmat3 normal_matrix = glm::transpose(glm::inverse(linear));
+    mesh.normal_to_world = glm::mat3(normal_matrix * glm::dmat3(mesh.normal_to_world));
     for (vec3& n : mesh.normals) {
         glm::dvec3 m = normal_matrix * glm::dvec3(n);
         double len = glm::length(m);

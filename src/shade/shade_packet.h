@@ -1,22 +1,345 @@
-// shade: the report's local shading of W hits (diffuse + Phong, shadow packets to every light),
-// the packet path. Mirrors shade_scalar.h.
+// shade: the packet path's shading kernels. The hits of a tile are grouped by material and each
+// group is shaded W lanes at a time by shade_batch: the terms of shade_scalar.cpp (local
+// lights and lobes, glossy, mirror, glass with Beer's law), but instead of recursing, new rays go
+// to queues - shadow rays per light, secondary rays to the next pass - carrying the weight their
+// radiance gets in the pixel. Compiled per feature set F (features.h): a scene pays only for
+// the features it uses. Header-only: instantiated by render/render_packet.cpp.
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "accel/bvh.h"
+#include "core/offset_packet.h"
 #include "core/ray_packet.h"
+#include "render/path_queue.h"
+#include "scene/features.h"
+#include "scene/mesh_normals.h"
 #include "scene/scene.h"
+#include "shade/brdf_packet.h"
+#include "shade/lights_packet.h"
 #include "shade/shade_scalar.h"
+#include "shade/texture_packet.h"
+#include "simd/hash.h"
+#include "simd/lanes.h"
+#include "traverse/intersect_packet.h"
 
 namespace raylane {
 
-/// Radiance towards the ray origins of a block of packets, for the active lanes (all must be
-/// hits): the formula of shade_hit, lane by lane. Per light, the block's shadow rays are traced
-/// together (intersect_any_block) and counted in `counts`. count * W <= max_block_rays.
+/// Closest hits of a PathQueue's rays, one array per field (index = ray).
+struct HitArrays {
+    std::vector<float> t, u, v;
+    std::vector<int32_t> prim, object;
+    void resize(size_t n) {
+        if (t.size() >= n) return;
+        for (auto* a : {&t, &u, &v}) a->resize(n);
+        prim.resize(n), object.resize(n);
+    }
+};
+
+/// What a batch writes to: this sample's radiance per tile slot, the shadow queues (one per
+/// light) and the next pass's queue.
+struct ShadeTarget {
+    float* acc_r = nullptr;
+    float* acc_g = nullptr;
+    float* acc_b = nullptr;
+    ShadowQueue* shadows = nullptr;
+    PathQueue* next = nullptr;
+    ShadeCounts* counts = nullptr;
+};
+
+namespace shade_detail {
+
+template <int W, class T>
+inline auto gather_lanes(const std::vector<T>& v, const int32_t* idx, int k, T fill) {
+    alignas(64) T tmp[W];
+    for (int i = 0; i < W; ++i) tmp[i] = i < k ? v[static_cast<size_t>(idx[i])] : fill;
+    if constexpr (W == 1) {
+        return tmp[0];
+    } else {
+        return load<W>(tmp);
+    }
+}
+
 template <int W>
-void shade_hit(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
-               const HitPacket<W>* hits, const vmask<W>* active, int count, Vec3<W>* color,
-               ShadeCounts& counts);
+inline Vec3<W> bc(vec3 v) {
+    return make_vec3<W>(v.x, v.y, v.z);
+}
+
+template <int W>
+inline vec3 lane(const Vec3<W>& v, int i) {
+    return vec3(get(v.x, i), get(v.y, i), get(v.z, i));
+}
+
+/// Adds value * weight to the lanes' pixel slots (lanes may share a slot: one at a time).
+template <int W>
+inline void accumulate(const ShadeTarget& out, const vint<W>& slot, const Vec3<W>& value,
+                       vmask<W> m) {
+    for_each_active(m, [&](int i) {
+        const size_t s = static_cast<size_t>(get(slot, i));
+        out.acc_r[s] += get(value.x, i);
+        out.acc_g[s] += get(value.y, i);
+        out.acc_b[s] += get(value.z, i);
+    });
+}
+
+template <int W>
+inline vfloat<W> random_at(const vint<W>& pixel, int32_t sample, uint32_t seed, const vint<W>& key,
+                           uint32_t purpose, uint32_t index, uint32_t coord) {
+    // path_dim of core/rng.h, lane-wise
+    const vint<W> salt = hash_u32<W>(broadcast<W>((purpose << 28) ^ (index << 2) ^ coord));
+    const vint<W> dim = hash_u32<W>(key ^ salt) | broadcast<W>(0x80000000u);
+    return random_float<W>(pixel, vint<W>(sample), dim, broadcast<W>(seed));
+}
+
+template <int W>
+inline vint<W> child_keys(const vint<W>& key, uint32_t purpose, uint32_t index) {
+    const vint<W> salt = hash_u32<W>(broadcast<W>((purpose << 28) ^ index ^ 0x68e31da4u));
+    return hash_u32<W>(key ^ salt);
+}
+
+}  // namespace shade_detail
+
+/// Shades k <= W hits of material `m`: queue entries idx[0..k) of `q` with hits `h`.
+/// `pixel` maps a tile slot to the image pixel index (the random numbers' counter).
+template <int W, uint32_t F>
+void shade_batch(const Scene& scene, const Material& m, const ShadeParams& params, int32_t sample,
+                 uint32_t seed, const int32_t* pixel_of_slot, const PathQueue& q,
+                 const HitArrays& h, const int32_t* idx, int k, const ShadeTarget& out) {
+    using namespace shade_detail;
+    const ShadingOptions& o = scene.shading;
+    const vfloat<W> zero(0.0f), one(1.0f);
+    const vmask<W> active = mask_from_bits<W>(k >= 32 ? ~0u : (1u << k) - 1u);
+
+    RayPacket<W> rays;
+    rays.org = {gather_lanes<W>(q.ox, idx, k, 0.0f), gather_lanes<W>(q.oy, idx, k, 0.0f),
+                gather_lanes<W>(q.oz, idx, k, 0.0f)};
+    rays.dir = {gather_lanes<W>(q.dx, idx, k, 0.0f), gather_lanes<W>(q.dy, idx, k, 0.0f),
+                gather_lanes<W>(q.dz, idx, k, 1.0f)};
+    HitPacket<W> hits;
+    hits.t = gather_lanes<W>(h.t, idx, k, 0.0f);
+    hits.u = gather_lanes<W>(h.u, idx, k, 0.0f);
+    hits.v = gather_lanes<W>(h.v, idx, k, 0.0f);
+    hits.prim = gather_lanes<W>(h.prim, idx, k, int32_t{-1});
+    hits.object = gather_lanes<W>(h.object, idx, k, int32_t{-1});
+    const Vec3<W> weight = {gather_lanes<W>(q.wr, idx, k, 0.0f),
+                            gather_lanes<W>(q.wg, idx, k, 0.0f),
+                            gather_lanes<W>(q.wb, idx, k, 0.0f)};
+    const vint<W> slot = gather_lanes<W>(q.slot, idx, k, int32_t{0});
+    const vint<W> key = gather_lanes<W>(q.key, idx, k, int32_t{0});
+    const vint<W> refl_depth = gather_lanes<W>(q.reflection_depth, idx, k, int32_t{0});
+    const vint<W> refr_depth = gather_lanes<W>(q.refraction_depth, idx, k, int32_t{0});
+    const vint<W> env = gather_lanes<W>(q.env_map, idx, k, int32_t{-1});
+    uint32_t local_bits = 0;
+    for (int i = 0; i < k; ++i) local_bits |= uint32_t{q.local_only[size_t(idx[i])]} << i;
+    const vmask<W> local_only = mask_from_bits<W>(local_bits);
+    alignas(64) int32_t pixel_tmp[W];
+    for (int i = 0; i < W; ++i) pixel_tmp[i] = pixel_of_slot[get(slot, i)];
+    vint<W> pixel;
+    if constexpr (W == 1) {
+        pixel = pixel_tmp[0];
+    } else {
+        pixel = load<W>(pixel_tmp);
+    }
+
+    if (m.emissive()) {
+        accumulate<W>(out, slot, weight * bc<W>(m.emission), active);
+        return;
+    }
+
+    // the shading point (shade_scalar.cpp: shading_point)
+    const SurfacePacket<W> sp = surface_at(scene, rays, hits, active);
+    const Vec3<W> view = rays.dir / sqrt(dot(rays.dir, rays.dir));
+    Vec3<W> ns = sp.shading_normal;
+    if constexpr ((F & feature_textures) != 0) {
+        if (m.normal_map >= 0) {
+            // per lane: the triangle's dp/du (meshes only; other shapes keep their normal)
+            Vec3<W> dpdu = make_vec3<W>(0.0f, 0.0f, 0.0f);
+            uint32_t mesh_bits = 0;
+            glm::mat3 to_world(1.0f);
+            for_each_active(active, [&](int i) {
+                const Object& obj = scene.objects[size_t(get(hits.object, i))];
+                if (obj.kind != ShapeKind::mesh) return;
+                const Mesh& mesh = scene.meshes[obj.shape];
+                const vec3 d = triangle_dpdu(mesh, uint32_t(get(hits.prim, i)));
+                set(dpdu.x, i, d.x), set(dpdu.y, i, d.y), set(dpdu.z, i, d.z);
+                to_world = mesh.normal_to_world;  // one mesh per material in practice
+                mesh_bits |= 1u << i;
+            });
+            if (mesh_bits != 0) {
+                const vmask<W> on_mesh = mask_from_bits<W>(mesh_bits);
+                const Vec3<W> texel =
+                    texture_lookup<W>(scene.textures[size_t(m.normal_map)], sp.u, sp.v, on_mesh);
+                ns = select(on_mesh,
+                            normal_from_map<W>(m.normal_map_mode, texel, ns, dpdu, to_world), ns);
+            }
+        }
+    }
+    const vmask<W> entering = mask_not(dot(sp.geometric_normal, view) > zero);
+    const Vec3<W> ng = select(entering, sp.geometric_normal, -sp.geometric_normal);
+    ns = select(dot(ns, ng) < zero, -ns, ns);
+    ns = keep_above<W>(ns, ng);
+    Vec3<W> c_d = bc<W>(m.c_d), c_s = bc<W>(m.c_s);
+    if constexpr ((F & feature_textures) != 0) {
+        if (m.texture >= 0) {
+            c_d = texture_lookup<W>(scene.textures[size_t(m.texture)], sp.u, sp.v, active);
+            if (m.texture_specular) c_s = c_d;
+        }
+    }
+    const int32_t material_env = m.env_map;
+
+    // glass (shade_scalar.cpp: glass_term)
+    if constexpr ((F & feature_refraction) != 0) {
+        if (m.refractive) {
+            const vmask<W> alive = mask_and(mask_andnot(active, local_only),
+                                            lt(refr_depth, vint<W>(o.max_refraction_depth)));
+            if (none(alive)) return;
+            const vfloat<W> eta = select(entering, vfloat<W>(m.ior), vfloat<W>(1.0f / m.ior));
+            const vfloat<W> cos_i = neg(dot(view, ns));
+            Vec3<W> t_dir;
+            vfloat<W> cos_t;
+            const vmask<W> refracts =
+                mask_and(refract_direction<W>(view, ns, eta, t_dir, cos_t), dot(t_dir, ng) < zero);
+            const vfloat<W> r = select(
+                refracts, m.fresnel && o.fresnel ? fresnel_dielectric<W>(cos_i, eta, cos_t) : zero,
+                one);
+            const Vec3<W> reflected_dir = reflect_direction<W>(view, ns);
+            const Vec3<W> org_out = offset_ray_origin(sp.position, ng);
+            const Vec3<W> org_in = offset_ray_origin(sp.position, -ng);
+            const vec3 no_filter(1.0f);
+            const vmask<W> reflects = mask_and(alive, r > zero);
+            if (o.override_reflected) {
+                accumulate<W>(out, slot, (weight * r) * bc<W>(o.reflected_color), reflects);
+            } else if (o.reflection && any(reflects)) {
+                const vint<W> child = child_keys<W>(key, purpose_reflect, 0);
+                out.next->reserve_more(W);
+                for_each_active(reflects, [&](int i) {
+                    ++out.counts->reflection_rays;
+                    out.next->push(
+                        lane(org_out, i), lane(reflected_dir, i), lane(weight, i) * get(r, i),
+                        get(entering, i) ? no_filter : m.filter, get(slot, i),
+                        uint32_t(get(child, i)), get(refl_depth, i), get(refr_depth, i) + 1,
+                        material_env >= 0 ? material_env : get(env, i), false);
+                });
+            }
+            const vmask<W> transmits = mask_and(mask_and(alive, refracts), r < one);
+            if (o.refraction && any(transmits)) {
+                const vint<W> child = child_keys<W>(key, purpose_refract, 0);
+                out.next->reserve_more(W);
+                for_each_active(transmits, [&](int i) {
+                    ++out.counts->refraction_rays;
+                    out.next->push(
+                        lane(org_in, i), lane(t_dir, i), lane(weight, i) * (1.0f - get(r, i)),
+                        get(entering, i) ? m.filter : no_filter, get(slot, i),
+                        uint32_t(get(child, i)), get(refl_depth, i), get(refr_depth, i) + 1,
+                        material_env >= 0 ? material_env : get(env, i), false);
+                });
+            }
+            return;
+        }
+    }
+
+    // mirror weights (shade_scalar.cpp: mirror_term): the local term is scaled by 1 - R
+    Vec3<W> local_weight = weight;
+    const Vec3<W> origin = offset_ray_origin(sp.position, ng);
+    if constexpr ((F & feature_reflection) != 0) {
+        if (m.reflection > 0.0f) {
+            accumulate<W>(out, slot, weight * (vfloat<W>(m.k_a_after) * c_d), active);
+            const vmask<W> mirror = mask_and(mask_andnot(active, local_only),
+                                             lt(refl_depth, vint<W>(o.max_reflection_depth)));
+            if (any(mirror)) {
+                const vfloat<W> r = m.fresnel && o.fresnel
+                                        ? schlick<W>(m.reflection, neg(dot(view, ns)))
+                                        : vfloat<W>(m.reflection);
+                local_weight = select(mirror, o.local ? weight * (one - r) : weight * zero, weight);
+                const Vec3<W> mirror_weight = (weight * r) * c_s;
+                if (o.override_reflected) {
+                    accumulate<W>(out, slot, mirror_weight * bc<W>(o.reflected_color), mirror);
+                } else if (o.reflection) {
+                    const Vec3<W> dir = reflect_direction<W>(view, ns);
+                    const vint<W> child = child_keys<W>(key, purpose_mirror, 0);
+                    out.next->reserve_more(W);
+                    for_each_active(mirror, [&](int i) {
+                        ++out.counts->reflection_rays;
+                        out.next->push(lane(origin, i), lane(dir, i), lane(mirror_weight, i),
+                                       vec3(1.0f), get(slot, i), uint32_t(get(child, i)),
+                                       get(refl_depth, i) + 1, get(refr_depth, i),
+                                       material_env >= 0 ? material_env : get(env, i), false);
+                    });
+                }
+            }
+        }
+    }
+
+    // local term (shade_scalar.cpp: local_term)
+    accumulate<W>(out, slot, local_weight * (vfloat<W>(m.k_a) * c_d), active);
+    const BrdfScaling brdf = scene.shading.brdf;
+    const Vec3<W> wo = -view;
+    for (size_t j = 0; j < scene.lights.size(); ++j) {
+        const Light& light = scene.lights[j];
+        const int n = light_sample_count(light, params);
+        const float sample_weight = 1.0f / static_cast<float>(n);
+        const Vec3<W> light_color = bc<W>(light.color);
+        for (int i = 0; i < n; ++i) {
+            vfloat<W> u1 = zero, u2 = zero, u3 = zero;
+            if constexpr ((F & feature_area_lights) != 0) {
+                if (light.is_area()) {
+                    const uint32_t id = static_cast<uint32_t>(j << 16 | static_cast<uint32_t>(i));
+                    u1 = random_at<W>(pixel, sample, seed, key, purpose_light, id, 0);
+                    u2 = random_at<W>(pixel, sample, seed, key, purpose_light, id, 1);
+                    u3 = random_at<W>(pixel, sample, seed, key, purpose_light, id, 2);
+                }
+            }
+            const LightSamplePacket<W> ls = sample_light<W>(light, origin, i, n, u1, u2, u3);
+            const vmask<W> lit = mask_and(mask_and(active, ls.valid),
+                                          mask_and(dot(ns, ls.dir) > zero, dot(ng, ls.dir) > zero));
+            if (none(lit)) continue;
+            const Vec3<W> f = diffuse_factor<W>(m, brdf, c_d, ns, ls.dir) +
+                              specular_factor<W>(m, brdf, c_s, ns, ls.dir, wo);
+            const Vec3<W> contribution =
+                local_weight * (((vfloat<W>(sample_weight) * ls.factor) * light_color) * f);
+            if (!light.shadows) {
+                accumulate<W>(out, slot, contribution, lit);
+                continue;
+            }
+            ShadowQueue& sq = out.shadows[j];
+            sq.reserve_more(W);
+            for_each_active(lit, [&](int l) {
+                ++out.counts->shadow_rays;
+                sq.push(lane(origin, l), lane(ls.dir, l), get(ls.distance, l),
+                        lane(contribution, l), get(slot, l));
+            });
+        }
+    }
+    if constexpr ((F & feature_glossy) != 0) {
+        if (m.model == SpecularModel::glossy_phong) {
+            const vmask<W> spawn = mask_andnot(active, local_only);
+            if (none(spawn)) return;
+            const int n = glossy_sample_count(m, params);
+            const Vec3<W> mirror = reflect_direction<W>(view, ns);
+            const vfloat<W> inv_n(1.0f / static_cast<float>(n));
+            out.next->reserve_more(n * W);
+            for (int i = 0; i < n; ++i) {
+                const uint32_t id = static_cast<uint32_t>(i);
+                const vfloat<W> u1 = random_at<W>(pixel, sample, seed, key, purpose_glossy, id, 0);
+                const vfloat<W> u2 = random_at<W>(pixel, sample, seed, key, purpose_glossy, id, 1);
+                const Vec3<W> wi = sample_phong_lobe<W>(mirror, m.exponent, u1, u2);
+                const Vec3<W> w = glossy_weight<W>(m, brdf, c_s, ns, wi);
+                const vmask<W> ok =
+                    mask_and(mask_and(spawn, dot(ng, wi) > zero),
+                             mask_or(mask_or(ne(w.x, zero), ne(w.y, zero)), ne(w.z, zero)));
+                const Vec3<W> ray_weight = local_weight * (w * inv_n);
+                const vint<W> child = child_keys<W>(key, purpose_glossy, id);
+                for_each_active(ok, [&](int l) {
+                    ++out.counts->glossy_rays;
+                    out.next->push(lane(origin, l), lane(wi, l), lane(ray_weight, l), vec3(1.0f),
+                                   get(slot, l), uint32_t(get(child, l)), get(refl_depth, l),
+                                   get(refr_depth, l),
+                                   material_env >= 0 ? material_env : get(env, l), true);
+                });
+            }
+        }
+    }
+}
 
 }  // namespace raylane

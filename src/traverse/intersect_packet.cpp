@@ -225,6 +225,7 @@ template <int W>
 vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t object_index,
                               const RayPacket<W>& rays, vmask<W> active) {
     const Object& object = scene.objects[object_index];
+    if (!object.casts_shadows) return vmask<W>(false);
     if (object.kind == ShapeKind::mesh)
         return intersect_mesh_any(accel.meshes[object.shape], rays, active);
     const vfloat<W> t = intersect_analytic(scene, object, to_object_space(object, rays), active);

@@ -151,6 +151,7 @@ void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t o
 bool intersect_object_any(const Scene& scene, const Accel& accel, uint32_t object_index,
                           const Ray& ray, TraversalStats& stats) {
     const Object& object = scene.objects[object_index];
+    if (!object.casts_shadows) return false;
     if (object.kind == ShapeKind::mesh)
         return intersect_mesh_any(accel.meshes[object.shape], ray, stats);
     ++stats.prims_tested;

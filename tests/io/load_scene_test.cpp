@@ -441,8 +441,11 @@ TEST(LoadScene, GivesLineAndColumnForMalformedJson) {
 
 TEST(LoadScene, KeepsKeysWithControlCharactersOnOneLine) {
     std::string got = error_of(scene_with(R"("bad\nkey": 1)"));
-    EXPECT_EQ(got, R"(scenes/bad.json: $["bad\u000akey"]: unknown key (expected: version, )"
-                   R"(description, camera, background, materials, objects, lights))");
+    EXPECT_EQ(
+        got,
+        R"(scenes/bad.json: $["bad\u000akey"]: unknown key (expected: version, )"
+        R"(description, camera, background, environment, shading, tonemap, materials, objects, )"
+        R"(lights))");
 }
 
 TEST(LoadScene, RejectsDeepNestingQuicklyWithoutCrashing) {

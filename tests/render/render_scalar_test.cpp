@@ -19,7 +19,12 @@ Scene lit_sphere() {
     scene.camera.width = 33;
     scene.camera.height = 33;
     scene.camera.fov_deg = 60.0f;
-    scene.materials.push_back({"white", vec3(1.0f), 1.0f, 0.0f, vec3(1.0f), 0.0f, 1.0f});
+    Material white;
+    white.name = "white";
+    white.c_d = vec3(1.0f);
+    white.k_d = 1.0f;
+    white.k_s = 0.0f;
+    scene.materials.push_back(white);
     scene.spheres.push_back({vec3(0.0f, 0.0f, 3.0f), 1.0f});
     scene.objects.push_back({ShapeKind::sphere, 0, 0});
     Light light;

@@ -1,0 +1,483 @@
+// app: `raylane report SCENE... [--out-dir DIR] [--reference-spp N] [--spp-list 1,2,4,...]
+// [--paths packet,scalar] [--repeats K]`: error against run time (render/report.h).
+#include <tbb/info.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "image/plot_svg.h"
+#include "render/report.h"
+#include "render/tiles.h"
+#include "simd/simd.h"
+
+namespace raylane {
+namespace {
+
+struct ReportOptions {
+    std::vector<std::string> scenes;
+    std::string out_dir = "out/report";
+    std::string reference_path = "packet";
+    std::vector<int> spp_list{1, 2, 4, 8, 16, 32, 64};
+    std::vector<std::string> paths{"packet", "scalar"};
+    int reference_spp = 0;  // 0 = 100 x the largest sweep value
+    int threads = 0, width = 0, height = 0, repeats = 3;
+    bool fresh_reference = false, quiet = false;
+};
+
+std::string cpu_model() {
+    std::ifstream f("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(f, line))
+        if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+            return line.substr(line.find(':') + 2);
+    return "unknown CPU";
+}
+
+/// Compiler, assertions, sanitizers and packet width: what the "build flags" line shows.
+std::string build_description() {
+    std::string s = "GCC-compatible " __VERSION__;
+#ifdef NDEBUG
+    s += ", NDEBUG";
+#else
+    s += ", assertions on";
+#endif
+#ifdef RAYLANE_SANITIZED
+    s += ", sanitizers";
+#endif
+    s += ", -ffp-contract=off, W = " + std::to_string(native_width);
+    return s;
+}
+
+/// The build plus when the running executable was made (a rebuilt renderer may shade differently).
+std::string build_stamp() {
+    std::string s = build_description();
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const auto t = std::filesystem::last_write_time(exe, ec);
+        if (!ec) {
+            const auto sys = std::chrono::file_clock::to_sys(t);
+            s += ", executable time " +
+                 std::to_string(
+                     std::chrono::duration_cast<std::chrono::seconds>(sys.time_since_epoch())
+                         .count());
+        }
+    }
+    return s;
+}
+
+/// Progress on stderr: a rewritten line on a terminal, a line per phase otherwise.
+struct Reporter {
+    bool quiet = false, tty = false;
+    void phase(const std::string& text) const {
+        if (!quiet) std::fprintf(stderr, "report: %s\n", text.c_str());
+    }
+    void update(const std::string& text) const {
+        if (!quiet && tty) std::fprintf(stderr, "\r\033[Kreport: %s", text.c_str());
+    }
+    void done() const {
+        if (!quiet && tty) std::fprintf(stderr, "\r\033[K");
+    }
+};
+
+std::string seconds_left(double start, int done, int total) {
+    if (done <= 0) return "";
+    const double spent = now_seconds() - start;
+    char buf[48];
+    std::snprintf(buf, sizeof buf, ", ~%.0f s left", spent / done * (total - done));
+    return buf;
+}
+
+std::string opt_ratio(const std::optional<double>& v) {
+    if (!v) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2fx", *v);
+    return buf;
+}
+
+/// Median, min and max of the present values.
+struct Spread {
+    double median = 0, lo = 0, hi = 0;
+    size_t n = 0;
+};
+Spread spread_of(std::vector<double> v) {
+    Spread s;
+    std::erase_if(v, [](double x) { return !std::isfinite(x); });
+    if (v.empty()) return s;
+    std::sort(v.begin(), v.end());
+    s.n = v.size();
+    s.median = s.n % 2 ? v[s.n / 2] : 0.5 * (v[s.n / 2 - 1] + v[s.n / 2]);
+    s.lo = v.front();
+    s.hi = v.back();
+    return s;
+}
+
+struct LoadedScene {
+    std::string path, stem;
+    Scene scene;
+    double load_ms = 0.0;
+};
+
+/// Renders one scene's report; returns false when a check failed (NaN/Inf, ray counts).
+bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter& rep) {
+    const Scene& scene = ls.scene;
+    const int w = scene.camera.width, h = scene.camera.height;
+    const double t_build = now_seconds();
+    const Accel accel = build_accel(scene, BuildParams{});
+    const double build_ms = elapsed_ms(t_build);
+    const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+    bool ok = true;
+
+    std::printf("report  scene=%s  %dx%d  threads=%d  W=%d\n", ls.path.c_str(), w, h, threads,
+                native_width);
+    std::printf("build   %s; %s\n", build_description().c_str(), cpu_model().c_str());
+    std::printf("setup   load %.1f ms, BVH build %.1f ms (not in the times below)\n", ls.load_ms,
+                build_ms);
+
+    // reference
+    ReferenceParams rp;
+    rp.spp = o.reference_spp;
+    rp.threads = o.threads;
+    rp.path = o.reference_path == "scalar" ? RenderPath::scalar : RenderPath::packet;
+    Reference ref;
+    const double t_analytic = now_seconds();
+    if (std::optional<AnalyticReference> a = analytic_reference(scene)) {
+        ref.seconds = now_seconds() - t_analytic;
+        rep.phase(ls.stem + ": analytic reference (" + a->name + ")");
+        ref.film = std::move(a->film);
+        ref.kind = "analytic: " + a->name;
+        std::printf("ref     analytic (%s; error-vs-time.md 2.1), no noise, %.1f s\n",
+                    a->name.c_str(), ref.seconds);
+    } else {
+        const std::string key = reference_cache_key(ls.path, w, h, rp);
+        const std::string file =
+            (std::filesystem::path(o.out_dir) / ("reference_" + ls.stem + "_" + key + ".pfm"))
+                .string();
+        std::string cached_build;
+        std::optional<Reference> cached;
+        if (!o.fresh_reference) cached = load_reference(file, w, h, &cached_build);
+        if (cached) {
+            ref = std::move(*cached);
+            std::printf("ref     converged, %d spp, %s path, seeds 0x%08x+, reused from %s\n",
+                        ref.spp, path_name(rp.path), rp.seed, file.c_str());
+            if (cached_build != build_stamp())
+                std::printf(
+                    "note    the cached reference was made by another build (%s); "
+                    "--fresh-reference renders it again\n",
+                    cached_build.c_str());
+        } else {
+            const int chunk = std::clamp(rp.chunk_spp, 2, rp.spp / 2);
+            rep.phase(ls.stem + ": rendering the reference, " + std::to_string(rp.spp) +
+                      " spp in " + std::to_string((rp.spp + chunk - 1) / chunk) + " chunks");
+            const double start = now_seconds();
+            ref = render_converged_reference(scene, accel, rp, [&](int done, int total) {
+                rep.update(ls.stem + ": reference " + std::to_string(done) + "/" +
+                           std::to_string(total) + " chunks" + seconds_left(start, done, total));
+            });
+            rep.done();
+            std::filesystem::create_directories(o.out_dir);
+            save_reference(file, ref, build_stamp());
+            std::printf(
+                "ref     converged, %d spp, %s path, seeds 0x%08x+, rendered in %.1f s, "
+                "saved to %s\n",
+                ref.spp, path_name(rp.path), rp.seed, ref.seconds, file.c_str());
+        }
+        const double largest = *std::max_element(o.spp_list.begin(), o.spp_list.end());
+        std::printf("        Var(ref) = %.3g per value (halves A/B: MSE(A,B)/4)%s\n", ref.variance,
+                    ref.spp < 100 * largest
+                        ? "; below 100 x the largest sweep value, so it inflates the smallest "
+                          "errors"
+                        : "");
+        if (ref.nan_samples > 0) {
+            std::printf("error   the reference has %llu NaN/Inf samples\n",
+                        static_cast<unsigned long long>(ref.nan_samples));
+            ok = false;
+        }
+    }
+
+    // sweep
+    SweepParams sp;
+    sp.paths.clear();
+    for (const std::string& p : o.paths)
+        sp.paths.push_back(p == "scalar" ? RenderPath::scalar : RenderPath::packet);
+    sp.knobs = sweep_knobs(scene);
+    sp.samples = o.spp_list;
+    sp.repeats = o.repeats;
+    sp.threads = o.threads;
+    rep.phase(
+        ls.stem + ": sweep, " +
+        std::to_string(sp.paths.size() * sp.knobs.size() * sp.samples.size() * size_t(sp.repeats)) +
+        " renders");
+    const double sweep_start = now_seconds();
+    const std::vector<SweepPoint> points =
+        run_sweep(scene, accel, ref.film, sp, [&](int done, int total, const SweepPoint& pt) {
+            rep.update(ls.stem + ": sweep " + std::to_string(done + 1) + "/" +
+                       std::to_string(total) + " (" + path_name(pt.path) + ", " +
+                       knob_name(pt.knob) + " " + std::to_string(pt.samples) + ")" +
+                       seconds_left(sweep_start, done, total));
+        });
+    rep.done();
+
+    // speed-up of packet over scalar at equal RMSE, per knob
+    const bool both = std::count(sp.paths.begin(), sp.paths.end(), RenderPath::packet) &&
+                      std::count(sp.paths.begin(), sp.paths.end(), RenderPath::scalar);
+    std::map<std::pair<SweepKnob, int>, std::optional<double>> speedup;
+    std::vector<double> speedups, time_ratios, efficiency_ratios;
+    if (both) {
+        for (SweepKnob k : sp.knobs) {
+            const Curve s = curve_of(points, RenderPath::scalar, k);
+            const Curve p = curve_of(points, RenderPath::packet, k);
+            const auto su = speedup_at_equal_error(s, p);
+            for (size_t i = 0; i < p.samples.size(); ++i) {
+                speedup[{k, int(p.samples[i])}] = su[i];
+                if (su[i]) speedups.push_back(*su[i]);
+                if (p.seconds[i] > 0) time_ratios.push_back(s.seconds[i] / p.seconds[i]);
+            }
+            // efficiency 1 / (relMSE t) at equal samples, packet over scalar
+            const auto sp_s = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) {
+                return q.path == RenderPath::scalar && q.knob == k;
+            });
+            const auto sp_p = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) {
+                return q.path == RenderPath::packet && q.knob == k;
+            });
+            for (size_t i = 0; i < p.samples.size(); ++i) {
+                const SweepPoint& a = *(sp_s + std::ptrdiff_t(i));
+                const SweepPoint& b = *(sp_p + std::ptrdiff_t(i));
+                const double den = b.error.relmse * b.seconds_median;
+                if (den > 0.0) efficiency_ratios.push_back(a.error.relmse * a.seconds_median / den);
+            }
+        }
+    }
+
+    std::printf(
+        "metrics RMSE; relMSE eps=%.0e; SMAPE in [0,1] eps=%.0e; time = render only, "
+        "median of %d interleaved runs; errors = mean over seeds 1..%d (+-se)\n",
+        relmse_epsilon, smape_epsilon, sp.repeats, sp.repeats);
+    std::printf("\n%-7s %-6s %7s %9s %8s %10s %9s %10s %8s %4s %9s\n", "path", "knob", "samples",
+                "time[s]", "Mrays/s", "RMSE", "+-se", "relMSE", "SMAPE", "NaN", "speed-up");
+    for (const SweepPoint& pt : points) {
+        const uint64_t bad = pt.error.nan_values + pt.error.inf_values + pt.nan_samples();
+        std::string su;
+        if (both && pt.path == RenderPath::packet) su = opt_ratio(speedup[{pt.knob, pt.samples}]);
+        std::printf("%-7s %-6s %7d %9.4f %8.2f %10.3e %9.1e %10.3e %8.5f %4llu %9s\n",
+                    path_name(pt.path), knob_name(pt.knob), pt.samples, pt.seconds_median,
+                    pt.mrays_per_second(), pt.error.rmse, pt.rmse_se, pt.error.relmse,
+                    pt.error.smape, static_cast<unsigned long long>(bad), su.c_str());
+        if (bad > 0) ok = false;
+        if (!pt.rays_match) {
+            std::printf("error   %s %s %d: ray counts differ from %s at the same seed\n",
+                        path_name(pt.path), knob_name(pt.knob), pt.samples, path_name(sp.paths[0]));
+            ok = false;
+        }
+    }
+
+    std::printf("\nfit log10(RMSE) = a + b log10(x), least squares over the points above:\n");
+    for (SweepKnob k : sp.knobs) {
+        for (RenderPath p : sp.paths) {
+            const Curve c = curve_of(points, p, k);
+            const LineFit ft = fit_loglog(c.seconds, c.rmse);
+            const LineFit fn = fit_loglog(c.samples, c.rmse);
+            std::printf(
+                "  %-6s %-6s against time: b = %6.3f R2 = %.4f   against samples: "
+                "b = %6.3f R2 = %.4f\n",
+                path_name(p), knob_name(k), ft.b, ft.r2, fn.b, fn.r2);
+        }
+    }
+    std::printf(
+        "  (expected b = -0.5 for independent samples, steeper with stratification "
+        "(-0.75 over edges); 1 spp is the pixel centre, not a random sample)\n");
+    if (both) {
+        const Spread st = spread_of(time_ratios), ss = spread_of(speedups);
+        const Spread se = spread_of(efficiency_ratios);
+        std::printf(
+            "equal samples  time scalar/packet: median %.2fx (range %.2f-%.2f, %zu "
+            "points)\n",
+            st.median, st.lo, st.hi, st.n);
+        if (ss.n > 0)
+            std::printf(
+                "equal RMSE     speed-up packet over scalar (log-log interpolation): "
+                "median %.2fx (range %.2f-%.2f, %zu points)\n",
+                ss.median, ss.lo, ss.hi, ss.n);
+        else
+            std::printf("equal RMSE     no packet point within the scalar curve's RMSE range\n");
+        // time to an error X from the fitted lines (X = the packet curve's middle RMSE)
+        const Curve cs = curve_of(points, RenderPath::scalar, SweepKnob::spp);
+        const Curve cp = curve_of(points, RenderPath::packet, SweepKnob::spp);
+        if (!cp.rmse.empty()) {
+            const double x = cp.rmse[cp.rmse.size() / 2];
+            const auto ts = x_at_fit(fit_loglog(cs.seconds, cs.rmse), x);
+            const auto tp = x_at_fit(fit_loglog(cp.seconds, cp.rmse), x);
+            if (ts && tp)
+                std::printf(
+                    "time to RMSE %.3g from the fits: scalar %.4f s, packet %.4f s -> "
+                    "%.2fx\n",
+                    x, *ts, *tp, *ts / *tp);
+        }
+        std::printf(
+            "efficiency     1/(relMSE t), packet over scalar at equal samples: median "
+            "%.2fx (range %.2f-%.2f)\n",
+            se.median, se.lo, se.hi);
+    }
+
+    // CSV
+    std::filesystem::create_directories(o.out_dir);
+    const std::string csv_path = (std::filesystem::path(o.out_dir) / (ls.stem + ".csv")).string();
+    std::string csv =
+        "scene,path,knob,samples,width,height,threads,repeats,seconds_median,seconds_min,"
+        "seconds_max,mrays_per_s,primary_rays,shadow_rays,reflection_rays,refraction_rays,"
+        "glossy_rays,rmse,rmse_se,mse,mse_minus_var_ref,"
+        "relmse,relmse_se,relmse_eps,smape,smape_eps,mean,ref_mean,nan_inf_values,nan_samples,"
+        "speedup_over_scalar,reference,reference_spp,var_ref\n";
+    for (const SweepPoint& pt : points) {
+        double lo = INFINITY, hi = 0.0;
+        for (const RenderStats& r : pt.runs)
+            lo = std::min(lo, r.seconds), hi = std::max(hi, r.seconds);
+        const RenderStats first = pt.runs.empty() ? RenderStats{} : pt.runs.front();
+        std::string su;
+        if (both && pt.path == RenderPath::packet)
+            if (const auto v = speedup[{pt.knob, pt.samples}]) su = std::to_string(*v);
+        char line[1024];
+        std::snprintf(line, sizeof line,
+                      "%s,%s,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%llu,%llu,%llu,%llu,%llu,%.6g,%."
+                      "3g,%.6g,%.6g,"
+                      "%.6g,%.3g,%g,%.6g,%g,%.6g,%.6g,%llu,%llu,%s,",
+                      ls.stem.c_str(), path_name(pt.path), knob_name(pt.knob), pt.samples, w, h,
+                      threads, sp.repeats, pt.seconds_median, lo, hi, pt.mrays_per_second(),
+                      static_cast<unsigned long long>(first.primary_rays),
+                      static_cast<unsigned long long>(first.shadow_rays),
+                      static_cast<unsigned long long>(first.reflection_rays),
+                      static_cast<unsigned long long>(first.refraction_rays),
+                      static_cast<unsigned long long>(first.glossy_rays), pt.error.rmse, pt.rmse_se,
+                      pt.error.mse, pt.error.mse - ref.variance, pt.error.relmse, pt.relmse_se,
+                      relmse_epsilon, pt.error.smape, smape_epsilon, pt.error.mean,
+                      pt.error.ref_mean,
+                      static_cast<unsigned long long>(pt.error.nan_values + pt.error.inf_values),
+                      static_cast<unsigned long long>(pt.nan_samples()), su.c_str());
+        csv += line;
+        std::snprintf(line, sizeof line, "\"%s\",%d,%.6g\n", ref.kind.c_str(), ref.spp,
+                      ref.variance);
+        csv += line;
+    }
+    write_text_file(csv_path, csv);
+
+    // plot
+    LogLogPlot plot;
+    plot.title = ls.stem + ": RMSE against render time (" + std::to_string(w) + "x" +
+                 std::to_string(h) + ", " + std::to_string(threads) + " threads)";
+    plot.x_label = "render time [s], median of " + std::to_string(sp.repeats);
+    plot.y_label = ref.spp > 0 ? "RMSE against " + std::to_string(ref.spp) + " spp reference"
+                               : "RMSE against the analytic reference";
+    for (SweepKnob k : sp.knobs) {
+        for (RenderPath p : sp.paths) {
+            PlotSeries s;
+            s.label = std::string(path_name(p)) +
+                      (k == SweepKnob::spp ? "" : std::string(", ") + knob_name(k) + " samples");
+            s.marker = p == RenderPath::packet ? PlotMarker::circle : PlotMarker::square;
+            if (k != SweepKnob::spp)
+                s.marker = k == SweepKnob::light ? PlotMarker::triangle : PlotMarker::diamond;
+            for (const SweepPoint& pt : points) {
+                if (pt.path != p || pt.knob != k) continue;
+                s.x.push_back(pt.seconds_median);
+                s.y.push_back(pt.error.rmse);
+                s.y_err.push_back(pt.rmse_se);
+            }
+            plot.series.push_back(std::move(s));
+        }
+    }
+    if (!plot.series.empty() && !plot.series[0].x.empty()) {
+        const size_t mid = plot.series[0].x.size() / 2;
+        plot.reference =
+            ReferenceSlope{-0.5, plot.series[0].x[mid], plot.series[0].y[mid], "slope -1/2"};
+    }
+    const std::string svg_path = (std::filesystem::path(o.out_dir) / (ls.stem + ".svg")).string();
+    write_text_file(svg_path, loglog_svg(plot));
+    std::printf("csv     %s\nplot    %s\n\n", csv_path.c_str(), svg_path.c_str());
+    std::fflush(stdout);
+    return ok;
+}
+
+int run_report(ReportOptions o) {
+    std::sort(o.spp_list.begin(), o.spp_list.end());
+    o.spp_list.erase(std::unique(o.spp_list.begin(), o.spp_list.end()), o.spp_list.end());
+    if (o.spp_list.empty()) throw InputError("--spp-list: no sample counts");
+    std::set<std::string> seen;
+    std::vector<std::string> paths;
+    for (const std::string& p : o.paths)
+        if (seen.insert(p).second) paths.push_back(p);
+    o.paths = paths;
+    if (o.reference_spp == 0) o.reference_spp = std::max(4, 100 * o.spp_list.back());
+    std::error_code ec;
+    std::filesystem::create_directories(o.out_dir, ec);
+    if (ec || !std::filesystem::is_directory(o.out_dir))
+        throw InputError("--out-dir: cannot create " + o.out_dir +
+                         (ec ? ": " + ec.message() : std::string(": not a directory")));
+
+    // load every scene first, so a bad one fails before any rendering
+    std::vector<LoadedScene> scenes;
+    std::set<std::string> stems;
+    for (const std::string& path : o.scenes) {
+        LoadedScene ls;
+        ls.path = path;
+        const double t = now_seconds();
+        ls.scene = load_scene_or_builtin(path);
+        ls.load_ms = elapsed_ms(t);
+        apply_resolution(ls.scene.camera, o.width, o.height);
+        ls.stem = std::filesystem::path(path).stem().string();
+        for (int i = 2; !stems.insert(ls.stem).second; ++i)
+            ls.stem = std::filesystem::path(path).stem().string() + "-" + std::to_string(i);
+        scenes.push_back(std::move(ls));
+    }
+    Reporter rep;
+    rep.quiet = o.quiet;
+    rep.tty = stderr_is_terminal();
+    bool ok = true;
+    for (const LoadedScene& ls : scenes) ok = report_scene(ls, o, rep) && ok;
+    if (!ok) std::fprintf(stderr, "raylane: report: checks failed (NaN/Inf or ray counts)\n");
+    return ok ? 0 : 1;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, int& exit_code) {
+    auto o = std::make_shared<ReportOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "report", "error against run time: a reference, then a sample sweep of both paths");
+    cmd->add_option("scenes", o->scenes, "scene JSON files")->required()->check(CLI::ExistingFile);
+    cmd->add_option("--out-dir", o->out_dir,
+                    "where references, CSV and SVG go (default out/report)");
+    cmd->add_option("--reference-spp", o->reference_spp,
+                    "samples of the converged reference (default 100 x the largest --spp-list)")
+        ->check(CLI::Range(4, 1 << 24));
+    cmd->add_option("--reference-path", o->reference_path,
+                    "renderer of the reference: packet (default) or scalar")
+        ->check(CLI::IsMember({"packet", "scalar"}));
+    cmd->add_option("--spp-list", o->spp_list, "sample counts of the sweep (default 1,2,4,...,64)")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--paths", o->paths, "renderers to sweep (default packet,scalar)")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"packet", "scalar"}));
+    cmd->add_option("--repeats", o->repeats, "seeds per point; time = median (default 3)")
+        ->check(CLI::Range(1, 100));
+    cmd->add_option("--threads", o->threads, "worker threads (default: all)")
+        ->check(CLI::Range(1, 1024));
+    cmd->add_option("--width", o->width, "image width (alone: keeps the aspect ratio)")
+        ->check(CLI::Range(1, 32768));
+    cmd->add_option("--height", o->height, "image height (alone: keeps the aspect ratio)")
+        ->check(CLI::Range(1, 32768));
+    cmd->add_flag("--fresh-reference", o->fresh_reference,
+                  "render the reference even when a cached one matches");
+    cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
+    cmd->callback([o, &exit_code] { exit_code = run_report(*o); });
+}
+
+}  // namespace raylane

@@ -1,0 +1,417 @@
+// shade: BRDF lobes, shading factors, lobe sampling, Fresnel and Beer's law for W shading points
+// that share one material. Mirrors brdf_scalar.h: same names, same order, same operation order,
+// so W = 1 matches the scalar path bit for bit and wider packets differ only by the vector
+// exp / log / log1p / expm1 / sin / cos of xsimd (a few ulps; see brdf_packet_test.cpp).
+//
+// Every function is lane-wise and pure: all lanes compute, nothing is written to memory except
+// the out-parameters, which get every lane. Lanes that fail a condition (ci <= 0, TIR, ...) get
+// the same values as the scalar path; garbage in inactive lanes cannot trap.
+#pragma once
+
+#include <cmath>
+
+#include "shade/brdf_scalar.h"
+#include "simd/math.h"
+#include "simd/simd.h"
+#include "simd/vec3.h"
+
+namespace raylane {
+
+namespace brdf_detail {
+
+// Transcendentals: the std:: functions at W = 1 (as brdf_scalar.cpp), xsimd's otherwise.
+// (simd/math.h has none of these; they live here rather than in simd/.)
+template <int W>
+inline vfloat<W> exp(const vfloat<W>& x) {
+    if constexpr (W == 1)
+        return std::exp(x);
+    else
+        return xsimd::exp(x);
+}
+template <int W>
+inline vfloat<W> log1p(const vfloat<W>& x) {
+    if constexpr (W == 1)
+        return std::log1p(x);
+    else
+        return xsimd::log1p(x);
+}
+template <int W>
+inline vfloat<W> expm1(const vfloat<W>& x) {
+    if constexpr (W == 1)
+        return std::expm1(x);
+    else
+        return xsimd::expm1(x);
+}
+template <int W>
+inline vfloat<W> cos(const vfloat<W>& x) {
+    if constexpr (W == 1)
+        return std::cos(x);
+    else
+        return xsimd::cos(x);
+}
+template <int W>
+inline vfloat<W> sin(const vfloat<W>& x) {
+    if constexpr (W == 1)
+        return std::sin(x);
+    else
+        return xsimd::sin(x);
+}
+
+inline constexpr float pi = std::numbers::pi_v<float>;
+inline constexpr float inv_pi = std::numbers::inv_pi_v<float>;
+inline constexpr float two_pi = 2.0f * pi;
+inline constexpr float four_pi = 4.0f * pi;
+inline constexpr float inv_two_pi = 0.5f * inv_pi;
+
+inline float clamp_exponent(float e) { return e > 0.0f ? e : 0.0f; }
+inline float alpha_squared(float alpha) {
+    const float a = alpha > brdf_alpha_min ? alpha : brdf_alpha_min;
+    return a * a;
+}
+
+/// c * v for a vector shared by all lanes (c.x * v, ...), the order glm uses for vec3 * float.
+template <int W>
+inline Vec3<W> scale(vec3 c, const vfloat<W>& v) {
+    return {c.x * v, c.y * v, c.z * v};
+}
+
+template <int W>
+inline vfloat<W> half_tan2(const Vec3<W>& n, const Vec3<W>& h, const vfloat<W>& hz) {
+    const Vec3<W> c = cross(n, h);
+    return min(dot(c, c) / (hz * hz), vfloat<W>(brdf_tan2_max));
+}
+
+template <int W>
+inline vfloat<W> ward_gaussian(const vfloat<W>& t2, float a2) {
+    return exp<W>(neg(t2 / a2)) / (four_pi * a2);
+}
+
+template <int W>
+inline Vec3<W> around_axis(const Vec3<W>& axis, const vfloat<W>& cos_t, const vfloat<W>& sin_t,
+                           const vfloat<W>& phi);
+
+template <int W>
+inline vfloat<W> transmitted_cos2(const vfloat<W>& ci, const vfloat<W>& eta) {
+    return ((eta - 1.0f) * (eta + 1.0f) + ci * ci) / (eta * eta);
+}
+
+template <int W>
+inline vfloat<W> select0(const vmask<W>& m, const vfloat<W>& v) {
+    return select(m, v, vfloat<W>(0.0f));
+}
+
+}  // namespace brdf_detail
+
+/// Lane-wise LobeSample.
+template <int W>
+struct LobeSamplePacket {
+    Vec3<W> wi;
+    vfloat<W> pdf = vfloat<W>(0.0f);
+    vfloat<W> weight = vfloat<W>(0.0f);
+};
+
+// ---- frames ---------------------------------------------------------------------------------
+
+template <int W>
+inline void orthonormal_basis(const Vec3<W>& n, Vec3<W>& t, Vec3<W>& b) {
+    const vfloat<W> sign = copysign(vfloat<W>(1.0f), n.z);
+    const vfloat<W> a = vfloat<W>(-1.0f) / (sign + n.z);
+    const vfloat<W> c = n.x * n.y * a;
+    t = {vfloat<W>(1.0f) + sign * n.x * n.x * a, sign * c, neg(sign) * n.x};
+    b = {c, sign + n.y * n.y * a, neg(n.y)};
+}
+
+template <int W>
+inline Vec3<W> mirror_direction(const Vec3<W>& n, const Vec3<W>& wo) {
+    return n * (2.0f * dot(n, wo)) - wo;
+}
+
+template <int W>
+inline Vec3<W> brdf_detail::around_axis(const Vec3<W>& axis, const vfloat<W>& cos_t,
+                                        const vfloat<W>& sin_t, const vfloat<W>& phi) {
+    Vec3<W> t, b;
+    orthonormal_basis(axis, t, b);
+    return t * (sin_t * cos<W>(phi)) + b * (sin_t * sin<W>(phi)) + axis * cos_t;
+}
+
+// ---- lobes ----------------------------------------------------------------------------------
+
+template <int W>
+inline vfloat<W> phong_lobe(const Vec3<W>& axis, const Vec3<W>& w, float e) {
+    using namespace brdf_detail;
+    const Vec3<W> d = w - axis;
+    const vfloat<W> chord2 = dot(d, d);
+    const vfloat<W> p = exp<W>(clamp_exponent(e) * log1p<W>(-0.5f * chord2));
+    return select0<W>(chord2 < vfloat<W>(2.0f), p);
+}
+
+template <int W>
+inline vfloat<W> blinn_phong_lobe(const Vec3<W>& n, const Vec3<W>& wi, const Vec3<W>& wo,
+                                  float exponent) {
+    using namespace brdf_detail;
+    const vfloat<W> ci = dot(n, wi), co = dot(n, wo), zero(0.0f);
+    const float e = clamp_exponent(exponent);
+    const vfloat<W> t2 = half_tan2(n, wi + wo, ci + co);
+    const vfloat<W> s = ((e + 2.0f) * inv_two_pi) * exp<W>((-0.5f * e) * log1p<W>(t2));
+    return select0<W>(mask_and(ci > zero, co > zero), s);
+}
+
+template <int W>
+inline vfloat<W> ward_lobe(const Vec3<W>& n, const Vec3<W>& wi, const Vec3<W>& wo, float alpha) {
+    using namespace brdf_detail;
+    const vfloat<W> ci = dot(n, wi), co = dot(n, wo), zero(0.0f);
+    const float a2 = alpha_squared(alpha);
+    const vfloat<W> t2 = half_tan2(n, wi + wo, ci + co);
+    const vfloat<W> lo = min(ci, co), hi = max(ci, co);
+    const vfloat<W> s = ward_gaussian<W>(t2, a2) / sqrt(lo) / sqrt(hi);
+    return select0<W>(mask_and(ci > zero, co > zero), min(s, vfloat<W>(brdf_lobe_max)));
+}
+
+template <int W>
+inline vfloat<W> ward_duer_lobe(const Vec3<W>& n, const Vec3<W>& wi, const Vec3<W>& wo,
+                                float alpha) {
+    using namespace brdf_detail;
+    const vfloat<W> ci = dot(n, wi), co = dot(n, wo), zero(0.0f);
+    const float a2 = alpha_squared(alpha);
+    const vfloat<W> t2 = half_tan2(n, wi + wo, ci + co);
+    const vfloat<W> lo = min(ci, co), hi = max(ci, co);
+    const vfloat<W> s = ward_gaussian<W>(t2, a2) / lo / hi;
+    return select0<W>(mask_and(ci > zero, co > zero), min(s, vfloat<W>(brdf_lobe_max)));
+}
+
+// ---- shading factors ------------------------------------------------------------------------
+
+/// c_s per lane (textures); the overload below uses m.c_s.
+template <int W>
+inline Vec3<W> specular_factor(const Material& m, BrdfScaling s, const Vec3<W>& c_s,
+                               const Vec3<W>& n, const Vec3<W>& wi, const Vec3<W>& wo) {
+    using namespace brdf_detail;
+    const vfloat<W> ci = dot(n, wi), zero(0.0f);
+    vfloat<W> lobe = zero;
+    switch (m.model) {
+        case SpecularModel::phong:
+            lobe = phong_lobe(mirror_direction(n, wo), wi, m.exponent);
+            return m.k_s * c_s * select0<W>(ci > zero, lobe);
+        case SpecularModel::glossy_phong:
+            return Vec3<W>{};
+        case SpecularModel::blinn_phong:
+            lobe = blinn_phong_lobe(n, wi, wo, m.exponent);
+            break;
+        case SpecularModel::ward:
+            lobe = ward_lobe(n, wi, wo, m.alpha);
+            break;
+        case SpecularModel::ward_duer:
+            lobe = ward_duer_lobe(n, wi, wo, m.alpha);
+            break;
+    }
+    const vfloat<W> scale = s == BrdfScaling::physical ? lobe * ci : lobe;
+    return m.k_s * c_s * select0<W>(ci > zero, scale);
+}
+
+template <int W>
+inline Vec3<W> specular_factor(const Material& m, BrdfScaling s, const Vec3<W>& n,
+                               const Vec3<W>& wi, const Vec3<W>& wo) {
+    return specular_factor(m, s, make_vec3<W>(m.c_s.x, m.c_s.y, m.c_s.z), n, wi, wo);
+}
+
+template <int W>
+inline Vec3<W> diffuse_factor(const Material& m, BrdfScaling s, const Vec3<W>& c_d,
+                              const Vec3<W>& n, const Vec3<W>& wi) {
+    using namespace brdf_detail;
+    const vfloat<W> ci = dot(n, wi), zero(0.0f);
+    const bool fitted = m.model == SpecularModel::blinn_phong || m.model == SpecularModel::ward ||
+                        m.model == SpecularModel::ward_duer;
+    const vfloat<W> w = fitted && s == BrdfScaling::physical ? ci * inv_pi : ci;
+    return c_d * (m.k_d * select0<W>(ci > zero, w));
+}
+
+/// c_s per lane (textures); the overload below uses m.c_s.
+template <int W>
+inline Vec3<W> glossy_weight(const Material& m, BrdfScaling s, const Vec3<W>& c_s, const Vec3<W>& n,
+                             const Vec3<W>& wi) {
+    using namespace brdf_detail;
+    const vfloat<W> ci = dot(n, wi), zero(0.0f);
+    const float e = clamp_exponent(m.exponent);
+    const vfloat<W> w = s == BrdfScaling::physical ? (e + 2.0f) / (e + 1.0f) * ci : 1.0f;
+    return m.k_s * c_s * select0<W>(ci > zero, w);
+}
+
+template <int W>
+inline Vec3<W> glossy_weight(const Material& m, BrdfScaling s, const Vec3<W>& n,
+                             const Vec3<W>& wi) {
+    return glossy_weight(m, s, make_vec3<W>(m.c_s.x, m.c_s.y, m.c_s.z), n, wi);
+}
+
+// ---- sampling -------------------------------------------------------------------------------
+
+template <int W>
+inline Vec3<W> sample_phong_lobe(const Vec3<W>& axis, float e, const vfloat<W>& u1,
+                                 const vfloat<W>& u2) {
+    using namespace brdf_detail;
+    const vfloat<W> lc = log1p<W>(neg(u2)) / (clamp_exponent(e) + 1.0f);
+    const vfloat<W> cos_t = exp<W>(lc);
+    const vfloat<W> sin_t = sqrt(neg(expm1<W>(2.0f * lc)));
+    return around_axis<W>(axis, cos_t, sin_t, two_pi * u1);
+}
+
+template <int W>
+inline vfloat<W> pdf_phong_lobe(const Vec3<W>& axis, float e, const Vec3<W>& w) {
+    using namespace brdf_detail;
+    return ((clamp_exponent(e) + 1.0f) * inv_two_pi) * phong_lobe(axis, w, e);
+}
+
+namespace brdf_detail {
+template <int W>
+inline LobeSamplePacket<W> sample_ward_common(const Vec3<W>& n, const Vec3<W>& wo, float alpha,
+                                              const vfloat<W>& u1, const vfloat<W>& u2, bool duer) {
+    const vfloat<W> zero(0.0f);
+    const vfloat<W> co = dot(n, wo);
+    const float a2 = alpha_squared(alpha);
+    const vfloat<W> t2 = min(neg(a2 * log1p<W>(neg(u2))), vfloat<W>(brdf_tan2_max));
+    const vfloat<W> cos_h = vfloat<W>(1.0f) / sqrt(1.0f + t2);
+    const vfloat<W> sin_h = sqrt(t2) * cos_h;
+    const Vec3<W> h = around_axis<W>(n, cos_h, sin_h, two_pi * u1);
+    const vfloat<W> oh = dot(wo, h);
+    LobeSamplePacket<W> s;
+    s.wi = h * (2.0f * oh) - wo;
+    const vfloat<W> ci = dot(n, s.wi);
+    const vfloat<W> c3 = cos_h * cos_h * cos_h;
+    const vfloat<W> pdf = min(ward_gaussian<W>(t2, a2) / (abs(oh) * c3), vfloat<W>(brdf_lobe_max));
+    s.pdf = select0<W>(co > zero, pdf);
+    const vfloat<W> w = duer ? oh * c3 / co : oh * c3 * sqrt(ci) / sqrt(co);
+    s.weight = select0<W>(mask_and(mask_and(ci > zero, co > zero), oh > zero), w);
+    return s;
+}
+}  // namespace brdf_detail
+
+template <int W>
+inline LobeSamplePacket<W> sample_ward(const Vec3<W>& n, const Vec3<W>& wo, float alpha,
+                                       const vfloat<W>& u1, const vfloat<W>& u2) {
+    return brdf_detail::sample_ward_common<W>(n, wo, alpha, u1, u2, false);
+}
+
+template <int W>
+inline LobeSamplePacket<W> sample_ward_duer(const Vec3<W>& n, const Vec3<W>& wo, float alpha,
+                                            const vfloat<W>& u1, const vfloat<W>& u2) {
+    return brdf_detail::sample_ward_common<W>(n, wo, alpha, u1, u2, true);
+}
+
+template <int W>
+inline vfloat<W> pdf_ward(const Vec3<W>& n, const Vec3<W>& wi, const Vec3<W>& wo, float alpha) {
+    using namespace brdf_detail;
+    const vfloat<W> ci = dot(n, wi), co = dot(n, wo), zero(0.0f);
+    const vfloat<W> hz = abs(ci + co);
+    const float a2 = alpha_squared(alpha);
+    const vfloat<W> t2 = half_tan2(n, wi + wo, hz);
+    const vfloat<W> p = ward_gaussian<W>(t2, a2) * (2.0f * (1.0f + t2)) / hz;
+    return select0<W>(mask_and(co > zero, hz > zero), min(p, vfloat<W>(brdf_lobe_max)));
+}
+
+template <int W>
+inline LobeSamplePacket<W> sample_blinn_phong(const Vec3<W>& n, const Vec3<W>& wo, float exponent,
+                                              const vfloat<W>& u1, const vfloat<W>& u2) {
+    using namespace brdf_detail;
+    const vfloat<W> zero(0.0f);
+    const vfloat<W> co = dot(n, wo);
+    const float e = clamp_exponent(exponent);
+    const vfloat<W> lc = log1p<W>(neg(u2)) / (e + 1.0f);
+    const vfloat<W> cos_h = exp<W>(lc);
+    const vfloat<W> sin_h = sqrt(neg(expm1<W>(2.0f * lc)));
+    const Vec3<W> h = around_axis<W>(n, cos_h, sin_h, two_pi * u1);
+    const vfloat<W> oh = dot(wo, h);
+    LobeSamplePacket<W> s;
+    s.wi = h * (2.0f * oh) - wo;
+    const vfloat<W> ci = dot(n, s.wi);
+    const vfloat<W> pdf_h = ((e + 1.0f) * inv_two_pi) * exp<W>(e * lc);
+    const vfloat<W> pdf = min(pdf_h / (4.0f * abs(oh)), vfloat<W>(brdf_lobe_max));
+    s.pdf = select0<W>(co > zero, pdf);
+    const vfloat<W> w = (e + 2.0f) / (e + 1.0f) * (4.0f * oh) * ci;
+    s.weight = select0<W>(mask_and(mask_and(ci > zero, co > zero), oh > zero), w);
+    return s;
+}
+
+template <int W>
+inline vfloat<W> pdf_blinn_phong(const Vec3<W>& n, const Vec3<W>& wi, const Vec3<W>& wo,
+                                 float exponent) {
+    using namespace brdf_detail;
+    const vfloat<W> ci = dot(n, wi), co = dot(n, wo), zero(0.0f);
+    const vfloat<W> hz = abs(ci + co);
+    const float e = clamp_exponent(exponent);
+    const Vec3<W> h = wi + wo;
+    const vfloat<W> t2 = half_tan2(n, h, hz);
+    const vfloat<W> pdf_h = ((e + 1.0f) * inv_two_pi) * exp<W>((-0.5f * e) * log1p<W>(t2));
+    const vfloat<W> p = min(pdf_h / (2.0f * sqrt(dot(h, h))), vfloat<W>(brdf_lobe_max));
+    return select0<W>(mask_and(co > zero, hz > zero), p);
+}
+
+// ---- Fresnel and optics ---------------------------------------------------------------------
+
+template <int W>
+inline vfloat<W> schlick(const vfloat<W>& r0, const vfloat<W>& cos_theta) {
+    const vfloat<W> c = min(max(cos_theta, vfloat<W>(0.0f)), vfloat<W>(1.0f));
+    const vfloat<W> m = 1.0f - c;
+    const vfloat<W> m2 = m * m;
+    return r0 + (1.0f - r0) * (m2 * m2 * m);
+}
+
+template <int W>
+inline vfloat<W> fresnel_dielectric(const vfloat<W>& cos_i, const vfloat<W>& eta,
+                                    const vfloat<W>& cos_t) {
+    const vfloat<W> zero(0.0f), one(1.0f);
+    const vfloat<W> ci = min(max(cos_i, zero), one);
+    const vfloat<W> ct = min(max(cos_t, zero), one);
+    const vfloat<W> r_par = (eta * ci - ct) / (eta * ci + ct);
+    const vfloat<W> r_perp = (ci - eta * ct) / (ci + eta * ct);
+    const vfloat<W> r = 0.5f * (r_par * r_par + r_perp * r_perp);
+    return select(ci > zero, r, one);
+}
+
+template <int W>
+inline vfloat<W> fresnel_dielectric(const vfloat<W>& cos_i, const vfloat<W>& eta) {
+    const vfloat<W> zero(0.0f), one(1.0f);
+    const vfloat<W> ci = min(max(cos_i, zero), one);
+    const vfloat<W> cos2_t = brdf_detail::transmitted_cos2<W>(ci, eta);
+    const vfloat<W> cos_t = select(eta == one, ci, sqrt(max(cos2_t, zero)));
+    return select(cos2_t > zero, fresnel_dielectric<W>(ci, eta, cos_t), one);
+}
+
+template <int W>
+inline Vec3<W> reflect_direction(const Vec3<W>& d, const Vec3<W>& n) {
+    return d - n * (2.0f * dot(d, n));
+}
+
+/// Returns the lanes that refract (false = total internal reflection: t = mirror, cos_t = 0).
+template <int W>
+inline vmask<W> refract_direction(const Vec3<W>& d, const Vec3<W>& n_facing, const vfloat<W>& eta,
+                                  Vec3<W>& t, vfloat<W>& cos_t) {
+    const vfloat<W> zero(0.0f), one(1.0f);
+    const vfloat<W> ci = min(max(neg(dot(d, n_facing)), zero), one);
+    const vmask<W> unit = eta == one;
+    const vfloat<W> cos2_t = brdf_detail::transmitted_cos2<W>(ci, eta);
+    const vmask<W> refracts = cos2_t > zero;
+    const vfloat<W> ct = sqrt(max(cos2_t, zero));
+    const Vec3<W> refracted = d / eta - n_facing * (ct - ci / eta);
+    t = select(unit, d, select(refracts, refracted, reflect_direction(d, n_facing)));
+    cos_t = select(unit, ci, select(refracts, ct, zero));
+    return mask_or(unit, refracts);
+}
+
+namespace brdf_detail {
+template <int W>
+inline vfloat<W> beer_channel(float filter, const vfloat<W>& distance) {
+    const vfloat<W> zero(0.0f), one(1.0f);
+    if (!(filter < 1.0f)) return one;
+    if (!(filter > 0.0f)) return select(distance > zero, zero, one);
+    return select(distance > zero, exp<W>(distance * std::log(filter)), one);
+}
+}  // namespace brdf_detail
+
+/// filter shared by all lanes (a material's), distance per lane.
+template <int W>
+inline Vec3<W> beer_transmittance(vec3 filter, const vfloat<W>& distance) {
+    using namespace brdf_detail;
+    return {beer_channel<W>(filter.x, distance), beer_channel<W>(filter.y, distance),
+            beer_channel<W>(filter.z, distance)};
+}
+
+}  // namespace raylane

@@ -1,0 +1,104 @@
+// shade: light samples for W shading points, the packet path. Mirrors lights_scalar.h step by
+// step (sample index and light are uniform across the lanes; positions and uniforms vary).
+#pragma once
+
+#include <cmath>
+#include <numbers>
+
+#include "shade/lights_scalar.h"
+#include "simd/math.h"
+#include "simd/vec3.h"
+
+namespace raylane {
+
+template <int W>
+struct LightSamplePacket {
+    Vec3<W> dir;
+    vfloat<W> distance = vfloat<W>(infinity);
+    vfloat<W> factor = vfloat<W>(0.0f);
+    vmask<W> valid;
+};
+
+template <int W>
+inline void stratified_square(int i, int n, const vfloat<W>& u1, const vfloat<W>& u2, vfloat<W>& sx,
+                              vfloat<W>& sy) {
+    const int m = static_cast<int>(std::sqrt(static_cast<float>(n)));
+    if (i >= m * m) {
+        sx = u1, sy = u2;
+        return;
+    }
+    const float inv = 1.0f / static_cast<float>(m);
+    sx = (vfloat<W>(static_cast<float>(i % m)) + u1) * vfloat<W>(inv);
+    sy = (vfloat<W>(static_cast<float>(i / m)) + u2) * vfloat<W>(inv);
+}
+
+template <int W>
+inline void concentric_disk(const vfloat<W>& sx, const vfloat<W>& sy, vfloat<W>& dx,
+                            vfloat<W>& dy) {
+    const vfloat<W> one(1.0f), two(2.0f), zero(0.0f);
+    const vfloat<W> a = two * sx - one, b = two * sy - one;
+    constexpr float quarter_pi = 0.25f * std::numbers::pi_v<float>;
+    const vmask<W> wide = abs(a) > abs(b);
+    // the divisions of the branch not taken may be 0/0: their lanes are discarded by select
+    const vfloat<W> r = select(wide, a, b);
+    const vfloat<W> phi = select(wide, vfloat<W>(quarter_pi) * (b / a),
+                                 vfloat<W>(2.0f * quarter_pi) - vfloat<W>(quarter_pi) * (a / b));
+    const vmask<W> centre = mask_and(a == zero, b == zero);
+    dx = select(centre, zero, r * cos(phi));
+    dy = select(centre, zero, r * sin(phi));
+}
+
+template <int W>
+inline Vec3<W> area_light_point(const Light& light, const vfloat<W>& sx, const vfloat<W>& sy,
+                                const vfloat<W>& u3) {
+    auto bc = [](vec3 v) { return make_vec3<W>(v.x, v.y, v.z); };
+    switch (light.kind) {
+        case LightKind::rect:
+            return (bc(light.position) + sx * bc(light.edge_u)) + sy * bc(light.edge_v);
+        case LightKind::disk: {
+            const vec3 n = light.direction;
+            const vec3 a = std::fabs(n.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 0.0f, 1.0f);
+            const vec3 t = glm::normalize(glm::cross(n, a));
+            const vec3 b = glm::cross(n, t);
+            vfloat<W> dx, dy;
+            concentric_disk<W>(sx, sy, dx, dy);
+            const vfloat<W> r(light.radius);
+            return bc(light.position) + r * (dx * bc(t) + dy * bc(b));
+        }
+        case LightKind::box:
+            return bc(light.position) + Vec3<W>{sx, sy, u3} * bc(light.edge_u);
+        default:
+            return bc(light.position);
+    }
+}
+
+template <int W>
+inline LightSamplePacket<W> sample_light(const Light& light, const Vec3<W>& origin, int i, int n,
+                                         const vfloat<W>& u1, const vfloat<W>& u2,
+                                         const vfloat<W>& u3) {
+    LightSamplePacket<W> ls;
+    if (light.kind == LightKind::directional) {
+        ls.dir = make_vec3<W>(light.direction.x, light.direction.y, light.direction.z);
+        ls.factor = vfloat<W>(light.intensity);
+        ls.valid = vfloat<W>(0.0f) == vfloat<W>(0.0f);
+        return ls;
+    }
+    Vec3<W> p;
+    if (light.kind == LightKind::point) {
+        p = make_vec3<W>(light.position.x, light.position.y, light.position.z);
+    } else {
+        vfloat<W> sx, sy;
+        stratified_square<W>(i, n, u1, u2, sx, sy);
+        p = area_light_point<W>(light, sx, sy, u3);
+    }
+    const Vec3<W> to = p - origin;
+    const vfloat<W> d2 = dot(to, to);
+    ls.valid = d2 > vfloat<W>(0.0f);
+    const vfloat<W> d = sqrt(d2);
+    ls.dir = to / d;
+    ls.distance = d;
+    ls.factor = vfloat<W>(light.intensity) / d2;
+    return ls;
+}
+
+}  // namespace raylane
