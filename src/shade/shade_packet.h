@@ -198,8 +198,9 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
             const vfloat<W> cos_i = neg(dot(view, ns));
             Vec3<W> t_dir;
             vfloat<W> cos_t;
-            const vmask<W> refracts =
-                mask_and(refract_direction<W>(view, ns, eta, t_dir, cos_t), dot(t_dir, ng) < zero);
+            // two statements: t_dir is written by refract_direction, then read
+            vmask<W> refracts = refract_direction<W>(view, ns, eta, t_dir, cos_t);
+            refracts = mask_and(refracts, dot(t_dir, ng) < zero);
             const vfloat<W> r = select(
                 refracts, m.fresnel && o.fresnel ? fresnel_dielectric<W>(cos_i, eta, cos_t) : zero,
                 one);
