@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/ray.h"
+#include "simd/lanes.h"
+#include "simd/vec3.h"
 
 namespace raylane {
 
@@ -23,7 +25,7 @@ struct PathQueue {
     std::vector<float> wr, wg, wb;
     std::vector<float> fr, fg, fb;
     std::vector<int32_t> slot, key, reflection_depth, refraction_depth, env_map;
-    std::vector<uint8_t> local_only;
+    std::vector<int32_t> local_only;  ///< 1: a glossy ray (its hit spawns nothing)
     int size = 0;
 
     void clear() { size = 0; }
@@ -33,8 +35,8 @@ struct PathQueue {
         if (need + pad <= ox.size()) return;
         const size_t n = std::max(need + pad, 2 * ox.size());
         for (auto* v : {&ox, &oy, &oz, &dx, &dy, &dz, &wr, &wg, &wb, &fr, &fg, &fb}) v->resize(n);
-        for (auto* v : {&slot, &key, &reflection_depth, &refraction_depth, &env_map}) v->resize(n);
-        local_only.resize(n);
+        for (auto* v : {&slot, &key, &reflection_depth, &refraction_depth, &env_map, &local_only})
+            v->resize(n);
     }
     void push(vec3 o, vec3 d, vec3 weight, vec3 filter, int32_t pixel_slot, uint32_t path_key,
               int32_t refl, int32_t refr, int32_t env, bool local) {
@@ -73,5 +75,41 @@ struct ShadowQueue {
         slot[i] = pixel_slot;
     }
 };
+
+/// Appends the active lanes of a packet of rays to q, in lane order (compress stores).
+template <int W>
+inline void push_packet(PathQueue& q, const Vec3<W>& o, const Vec3<W>& d, const Vec3<W>& weight,
+                        const Vec3<W>& filter, const vint<W>& slot, const vint<W>& key,
+                        const vint<W>& refl, const vint<W>& refr, const vint<W>& env,
+                        const vint<W>& local, vmask<W> m) {
+    q.reserve_more(W);
+    const size_t i = static_cast<size_t>(q.size);
+    compress_store(&q.ox[i], o.x, m), compress_store(&q.oy[i], o.y, m);
+    compress_store(&q.oz[i], o.z, m), compress_store(&q.dx[i], d.x, m);
+    compress_store(&q.dy[i], d.y, m), compress_store(&q.dz[i], d.z, m);
+    compress_store(&q.wr[i], weight.x, m), compress_store(&q.wg[i], weight.y, m);
+    compress_store(&q.wb[i], weight.z, m), compress_store(&q.fr[i], filter.x, m);
+    compress_store(&q.fg[i], filter.y, m), compress_store(&q.fb[i], filter.z, m);
+    compress_store(&q.slot[i], slot, m), compress_store(&q.key[i], key, m);
+    compress_store(&q.reflection_depth[i], refl, m);
+    compress_store(&q.refraction_depth[i], refr, m);
+    compress_store(&q.env_map[i], env, m), compress_store(&q.local_only[i], local, m);
+    q.size += count(m);
+}
+
+/// Appends the active lanes of a packet of shadow rays to q.
+template <int W>
+inline void push_packet(ShadowQueue& q, const Vec3<W>& o, const Vec3<W>& d, const vfloat<W>& t,
+                        const Vec3<W>& contribution, const vint<W>& slot, vmask<W> m) {
+    q.reserve_more(W);
+    const size_t i = static_cast<size_t>(q.size);
+    compress_store(&q.ox[i], o.x, m), compress_store(&q.oy[i], o.y, m);
+    compress_store(&q.oz[i], o.z, m), compress_store(&q.dx[i], d.x, m);
+    compress_store(&q.dy[i], d.y, m), compress_store(&q.dz[i], d.z, m);
+    compress_store(&q.t_max[i], t, m), compress_store(&q.cr[i], contribution.x, m);
+    compress_store(&q.cg[i], contribution.y, m), compress_store(&q.cb[i], contribution.z, m);
+    compress_store(&q.slot[i], slot, m);
+    q.size += count(m);
+}
 
 }  // namespace raylane

@@ -158,7 +158,7 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
         PathQueue& q = b.paths;
         trace_queue<W>(scene, accel, q, first, b.hits);
         first = false;
-        if (b.order.size() < static_cast<size_t>(q.size)) b.order.resize(q.ox.size());
+        if (b.order.size() < static_cast<size_t>(q.size + W)) b.order.resize(q.ox.size());
         // Beer's law over the distance travelled, misses, and the count of hits per material
         std::fill(b.material_count.begin(), b.material_count.end(), 0);
         for (int i = 0; i < q.size; ++i) {
@@ -276,17 +276,14 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
             if (params.aov == Aov::color) {
                 // camera rays into the queue, then passes until every path has ended
                 b.paths.clear();
-                b.paths.reserve_more(count * W);
+                std::fill(b.acc_r, b.acc_r + max_block_rays, 0.0f);
+                std::fill(b.acc_g, b.acc_g + max_block_rays, 0.0f);
+                std::fill(b.acc_b, b.acc_b + max_block_rays, 0.0f);
+                const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
+                const vint<W> zero(0), none(-1);
                 for (int p = 0; p < count; ++p) {
-                    for_each_active(active[p], [&](int i) {
-                        const int32_t sl = get(slot[p], i);
-                        b.acc_r[sl] = b.acc_g[sl] = b.acc_b[sl] = 0.0f;
-                        b.paths.push(vec3(get(rays[p].org.x, i), get(rays[p].org.y, i),
-                                          get(rays[p].org.z, i)),
-                                     vec3(get(rays[p].dir.x, i), get(rays[p].dir.y, i),
-                                          get(rays[p].dir.z, i)),
-                                     vec3(1.0f), vec3(1.0f), sl, 0u, 0, 0, -1, false);
-                    });
+                    push_packet<W>(b.paths, rays[p].org, rays[p].dir, one, one, slot[p], zero, zero,
+                                   zero, none, zero, active[p]);
                 }
                 shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
                 for (int p = 0; p < count; ++p) {

@@ -50,15 +50,17 @@ struct ShadeTarget {
 
 namespace shade_detail {
 
-template <int W, class T>
-inline auto gather_lanes(const std::vector<T>& v, const int32_t* idx, int k, T fill) {
-    alignas(64) T tmp[W];
-    for (int i = 0; i < W; ++i) tmp[i] = i < k ? v[static_cast<size_t>(idx[i])] : fill;
-    if constexpr (W == 1) {
-        return tmp[0];
-    } else {
-        return load<W>(tmp);
-    }
+/// v[idx[i]] for the first k lanes (the others get `fill`); idx has room for W entries.
+template <int W>
+inline vfloat<W> gather_lanes(const std::vector<float>& v, const vint<W>& idx, vmask<W> m,
+                              float fill) {
+    return select(m, gather(v.data(), idx, m), vfloat<W>(fill));
+}
+template <int W>
+inline vint<W> gather_lanes(const std::vector<int32_t>& v, const vint<W>& idx, vmask<W> m,
+                            int32_t fill) {
+    const vfloat<W> bits = gather(reinterpret_cast<const float*>(v.data()), idx, m);
+    return select(m, float_as_int(bits), vint<W>(fill));
 }
 
 template <int W>
@@ -110,37 +112,36 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
     const ShadingOptions& o = scene.shading;
     const vfloat<W> zero(0.0f), one(1.0f);
     const vmask<W> active = mask_from_bits<W>(k >= 32 ? ~0u : (1u << k) - 1u);
+    vint<W> ids;
+    if constexpr (W == 1) {
+        ids = idx[0];
+    } else {
+        ids = load<W>(idx);  // idx has room for W entries; lanes past k are masked
+    }
 
     RayPacket<W> rays;
-    rays.org = {gather_lanes<W>(q.ox, idx, k, 0.0f), gather_lanes<W>(q.oy, idx, k, 0.0f),
-                gather_lanes<W>(q.oz, idx, k, 0.0f)};
-    rays.dir = {gather_lanes<W>(q.dx, idx, k, 0.0f), gather_lanes<W>(q.dy, idx, k, 0.0f),
-                gather_lanes<W>(q.dz, idx, k, 1.0f)};
+    rays.org = {gather_lanes<W>(q.ox, ids, active, 0.0f), gather_lanes<W>(q.oy, ids, active, 0.0f),
+                gather_lanes<W>(q.oz, ids, active, 0.0f)};
+    rays.dir = {gather_lanes<W>(q.dx, ids, active, 0.0f), gather_lanes<W>(q.dy, ids, active, 0.0f),
+                gather_lanes<W>(q.dz, ids, active, 1.0f)};
     HitPacket<W> hits;
-    hits.t = gather_lanes<W>(h.t, idx, k, 0.0f);
-    hits.u = gather_lanes<W>(h.u, idx, k, 0.0f);
-    hits.v = gather_lanes<W>(h.v, idx, k, 0.0f);
-    hits.prim = gather_lanes<W>(h.prim, idx, k, int32_t{-1});
-    hits.object = gather_lanes<W>(h.object, idx, k, int32_t{-1});
-    const Vec3<W> weight = {gather_lanes<W>(q.wr, idx, k, 0.0f),
-                            gather_lanes<W>(q.wg, idx, k, 0.0f),
-                            gather_lanes<W>(q.wb, idx, k, 0.0f)};
-    const vint<W> slot = gather_lanes<W>(q.slot, idx, k, int32_t{0});
-    const vint<W> key = gather_lanes<W>(q.key, idx, k, int32_t{0});
-    const vint<W> refl_depth = gather_lanes<W>(q.reflection_depth, idx, k, int32_t{0});
-    const vint<W> refr_depth = gather_lanes<W>(q.refraction_depth, idx, k, int32_t{0});
-    const vint<W> env = gather_lanes<W>(q.env_map, idx, k, int32_t{-1});
-    uint32_t local_bits = 0;
-    for (int i = 0; i < k; ++i) local_bits |= uint32_t{q.local_only[size_t(idx[i])]} << i;
-    const vmask<W> local_only = mask_from_bits<W>(local_bits);
-    alignas(64) int32_t pixel_tmp[W];
-    for (int i = 0; i < W; ++i) pixel_tmp[i] = pixel_of_slot[get(slot, i)];
-    vint<W> pixel;
-    if constexpr (W == 1) {
-        pixel = pixel_tmp[0];
-    } else {
-        pixel = load<W>(pixel_tmp);
-    }
+    hits.t = gather_lanes<W>(h.t, ids, active, 0.0f);
+    hits.u = gather_lanes<W>(h.u, ids, active, 0.0f);
+    hits.v = gather_lanes<W>(h.v, ids, active, 0.0f);
+    hits.prim = gather_lanes<W>(h.prim, ids, active, int32_t{-1});
+    hits.object = gather_lanes<W>(h.object, ids, active, int32_t{-1});
+    const Vec3<W> weight = {gather_lanes<W>(q.wr, ids, active, 0.0f),
+                            gather_lanes<W>(q.wg, ids, active, 0.0f),
+                            gather_lanes<W>(q.wb, ids, active, 0.0f)};
+    const vint<W> slot = gather_lanes<W>(q.slot, ids, active, int32_t{0});
+    const vint<W> key = gather_lanes<W>(q.key, ids, active, int32_t{0});
+    const vint<W> refl_depth = gather_lanes<W>(q.reflection_depth, ids, active, int32_t{0});
+    const vint<W> refr_depth = gather_lanes<W>(q.refraction_depth, ids, active, int32_t{0});
+    const vint<W> env = gather_lanes<W>(q.env_map, ids, active, int32_t{-1});
+    const vmask<W> local_only =
+        mask_andnot(active, eq(gather_lanes<W>(q.local_only, ids, active, int32_t{0}), vint<W>(0)));
+    const vint<W> pixel =
+        float_as_int(gather(reinterpret_cast<const float*>(pixel_of_slot), slot, active));
 
     if (m.emissive()) {
         accumulate<W>(out, slot, weight * bc<W>(m.emission), active);
@@ -186,7 +187,8 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
             if (m.texture_specular) c_s = c_d;
         }
     }
-    const int32_t material_env = m.env_map;
+    // secondary rays see the material's reflection map, else the one their path carries
+    const vint<W> child_env = m.env_map >= 0 ? vint<W>(m.env_map) : env;
 
     // glass (shade_scalar.cpp: glass_term)
     if constexpr ((F & feature_refraction) != 0) {
@@ -212,29 +214,19 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
             if (o.override_reflected) {
                 accumulate<W>(out, slot, (weight * r) * bc<W>(o.reflected_color), reflects);
             } else if (o.reflection && any(reflects)) {
-                const vint<W> child = child_keys<W>(key, purpose_reflect, 0);
-                out.next->reserve_more(W);
-                for_each_active(reflects, [&](int i) {
-                    ++out.counts->reflection_rays;
-                    out.next->push(
-                        lane(org_out, i), lane(reflected_dir, i), lane(weight, i) * get(r, i),
-                        get(entering, i) ? no_filter : m.filter, get(slot, i),
-                        uint32_t(get(child, i)), get(refl_depth, i), get(refr_depth, i) + 1,
-                        material_env >= 0 ? material_env : get(env, i), false);
-                });
+                out.counts->reflection_rays += uint64_t(count(reflects));
+                push_packet<W>(*out.next, org_out, reflected_dir, weight * r,
+                               select(entering, bc<W>(no_filter), bc<W>(m.filter)), slot,
+                               child_keys<W>(key, purpose_reflect, 0), refl_depth,
+                               refr_depth + vint<W>(1), child_env, vint<W>(0), reflects);
             }
             const vmask<W> transmits = mask_and(mask_and(alive, refracts), r < one);
             if (o.refraction && any(transmits)) {
-                const vint<W> child = child_keys<W>(key, purpose_refract, 0);
-                out.next->reserve_more(W);
-                for_each_active(transmits, [&](int i) {
-                    ++out.counts->refraction_rays;
-                    out.next->push(
-                        lane(org_in, i), lane(t_dir, i), lane(weight, i) * (1.0f - get(r, i)),
-                        get(entering, i) ? m.filter : no_filter, get(slot, i),
-                        uint32_t(get(child, i)), get(refl_depth, i), get(refr_depth, i) + 1,
-                        material_env >= 0 ? material_env : get(env, i), false);
-                });
+                out.counts->refraction_rays += uint64_t(count(transmits));
+                push_packet<W>(*out.next, org_in, t_dir, weight * (one - r),
+                               select(entering, bc<W>(m.filter), bc<W>(no_filter)), slot,
+                               child_keys<W>(key, purpose_refract, 0), refl_depth,
+                               refr_depth + vint<W>(1), child_env, vint<W>(0), transmits);
             }
             return;
         }
@@ -258,15 +250,10 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
                     accumulate<W>(out, slot, mirror_weight * bc<W>(o.reflected_color), mirror);
                 } else if (o.reflection) {
                     const Vec3<W> dir = reflect_direction<W>(view, ns);
-                    const vint<W> child = child_keys<W>(key, purpose_mirror, 0);
-                    out.next->reserve_more(W);
-                    for_each_active(mirror, [&](int i) {
-                        ++out.counts->reflection_rays;
-                        out.next->push(lane(origin, i), lane(dir, i), lane(mirror_weight, i),
-                                       vec3(1.0f), get(slot, i), uint32_t(get(child, i)),
-                                       get(refl_depth, i) + 1, get(refr_depth, i),
-                                       material_env >= 0 ? material_env : get(env, i), false);
-                    });
+                    out.counts->reflection_rays += uint64_t(count(mirror));
+                    push_packet<W>(*out.next, origin, dir, mirror_weight, bc<W>(vec3(1.0f)), slot,
+                                   child_keys<W>(key, purpose_mirror, 0), refl_depth + vint<W>(1),
+                                   refr_depth, child_env, vint<W>(0), mirror);
                 }
             }
         }
@@ -303,13 +290,8 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
                 accumulate<W>(out, slot, contribution, lit);
                 continue;
             }
-            ShadowQueue& sq = out.shadows[j];
-            sq.reserve_more(W);
-            for_each_active(lit, [&](int l) {
-                ++out.counts->shadow_rays;
-                sq.push(lane(origin, l), lane(ls.dir, l), get(ls.distance, l),
-                        lane(contribution, l), get(slot, l));
-            });
+            out.counts->shadow_rays += uint64_t(count(lit));
+            push_packet<W>(out.shadows[j], origin, ls.dir, ls.distance, contribution, slot, lit);
         }
     }
     if constexpr ((F & feature_glossy) != 0) {
@@ -319,7 +301,6 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
             const int n = glossy_sample_count(m, params);
             const Vec3<W> mirror = reflect_direction<W>(view, ns);
             const vfloat<W> inv_n(1.0f / static_cast<float>(n));
-            out.next->reserve_more(n * W);
             for (int i = 0; i < n; ++i) {
                 const uint32_t id = static_cast<uint32_t>(i);
                 const vfloat<W> u1 = random_at<W>(pixel, sample, seed, key, purpose_glossy, id, 0);
@@ -330,14 +311,10 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
                     mask_and(mask_and(spawn, dot(ng, wi) > zero),
                              mask_or(mask_or(ne(w.x, zero), ne(w.y, zero)), ne(w.z, zero)));
                 const Vec3<W> ray_weight = local_weight * (w * inv_n);
-                const vint<W> child = child_keys<W>(key, purpose_glossy, id);
-                for_each_active(ok, [&](int l) {
-                    ++out.counts->glossy_rays;
-                    out.next->push(lane(origin, l), lane(wi, l), lane(ray_weight, l), vec3(1.0f),
-                                   get(slot, l), uint32_t(get(child, l)), get(refl_depth, l),
-                                   get(refr_depth, l),
-                                   material_env >= 0 ? material_env : get(env, l), true);
-                });
+                out.counts->glossy_rays += uint64_t(count(ok));
+                push_packet<W>(*out.next, origin, wi, ray_weight, bc<W>(vec3(1.0f)), slot,
+                               child_keys<W>(key, purpose_glossy, id), refl_depth, refr_depth,
+                               child_env, vint<W>(1), ok);
             }
         }
     }
