@@ -751,6 +751,7 @@ class SceneReader {
         }
         if (const Json* v = find(n, "shadows")) light.shadows = boolean(Node{v, path("shadows")});
         if (light.is_area()) {
+            check_area_light(n, light);
             light.samples = 16;
             if (const Json* v = find(n, "samples")) {
                 light.samples = integer(Node{v, path("samples")}, 1, 4096);
@@ -762,6 +763,41 @@ class SceneReader {
         return light;
     }
 
+    /// Area lights whose derived geometry or emission would leave the float range (or whose
+    /// stand-in would be degenerate) are errors: nothing infinite may reach the image.
+    void check_area_light(const Node& n, const Light& light) const {
+        auto finite3 = [](vec3 v) {
+            return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+        };
+        const vec3 far = light.position + light.edge_u + light.edge_v;
+        if (!finite3(light.edge_u) || !finite3(far)) {
+            fail(n, "the light's extent overflows the float range");
+        }
+        if (light.kind == LightKind::disk && !(1e-3f * light.radius > 1e-30f)) {
+            fail(child(n, "radius"), "is too small (must be > 1e-27)");
+        }
+        if (!(double(light.intensity) / (4.0 * std::numbers::pi * emitter_area(light)) < 1e30)) {
+            fail(n, "the light's emitted radiance overflows (intensity too large for its area)");
+        }
+    }
+
+    /// The report's "2ab" of an area light's stand-in (twice the area of a rectangle or disc;
+    /// 2ab for a box with a, b its two largest extents); 1 when degenerate.
+    static double emitter_area(const Light& light) {
+        double area = 0.0;
+        const glm::dvec3 e(light.edge_u);
+        if (light.kind == LightKind::rect) {
+            area = 2.0 * glm::length(glm::cross(e, glm::dvec3(light.edge_v)));
+        } else if (light.kind == LightKind::disk) {
+            area = 2.0 * std::numbers::pi * double(light.radius) * light.radius;
+        } else {
+            double a = std::max(e.x, e.y), b = std::max(e.x, e.z);
+            if (a == b) b = std::max(e.y, e.z);
+            area = 2.0 * a * b;
+        }
+        return area > 0.0 ? area : 1.0;
+    }
+
     /// The visible stand-in of an area light (report-scenes.md 1.4): an object of emitted
     /// radiance colour * intensity / (4 pi A) that casts no shadows. A is the report's "2ab":
     /// twice the area of a rectangle or disc, 2ab for a box with a, b its two largest extents.
@@ -771,12 +807,9 @@ class SceneReader {
         Object o;
         o.casts_shadows = false;
         o.material = uint32_t(scene.materials.size());
-        double area = 0.0;
         Transform t;
         switch (light.kind) {
             case LightKind::rect: {
-                area = 2.0 *
-                       glm::length(glm::cross(glm::dvec3(light.edge_u), glm::dvec3(light.edge_v)));
                 const vec3 p = light.position, u = light.edge_u, v = light.edge_v;
                 const Triangle tris[2] = {{p, p + u, p + u + v}, {p, p + u + v, p + v}};
                 for (const Triangle& tri : tris) {
@@ -789,7 +822,6 @@ class SceneReader {
             }
             case LightKind::disk: {
                 const double r = light.radius;
-                area = 2.0 * std::numbers::pi * r * r;
                 // a thin cylinder whose axis (+y) is the disc normal
                 const glm::dvec3 n(light.direction);
                 const glm::dvec3 a =
@@ -806,10 +838,6 @@ class SceneReader {
                 break;
             }
             case LightKind::box: {
-                const glm::dvec3 e(light.edge_u);
-                double a = std::max(e.x, e.y), b = std::max(e.x, e.z);
-                if (a == b) b = std::max(e.y, e.z);
-                area = 2.0 * a * b;
                 o.kind = ShapeKind::box;
                 o.shape = uint32_t(scene.boxes.size());
                 scene.boxes.push_back(Box{light.position, light.position + light.edge_u});
@@ -819,7 +847,7 @@ class SceneReader {
             default:
                 return;
         }
-        if (!(area > 0.0)) area = 1.0;  // a degenerate box: show it at intensity / 4 pi
+        const double area = emitter_area(light);
         m.emission = light.color * float(double(light.intensity) / (4.0 * std::numbers::pi * area));
         scene.materials.push_back(m);
     }

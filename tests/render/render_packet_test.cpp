@@ -103,6 +103,8 @@ TEST(RenderPacket, EverySceneFileAgreesWithTheScalarPath) {
         const Accel accel = build_accel(scene, BuildParams{});
         RenderParams p;
         p.spp = std::min(scene.camera.spp, 2);
+        p.light_samples = 4;  // fewer area-light and glossy samples: the same code, less time
+        p.glossy_samples = 3;
         const RenderResult a = render_scalar(scene, accel, p);
         const RenderResult b = render_packet(scene, accel, p);
         const ImageDiff d = diff_images(a.film, b.film);
