@@ -169,15 +169,25 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
                     q.wr[r] *= f.x, q.wg[r] *= f.y, q.wb[r] *= f.z;
                 }
             }
-            if (b.hits.prim[r] < 0) {
-                const vec3 dir(q.dx[r], q.dy[r], q.dz[r]);
-                const vec3 l = miss_radiance(scene, q.env_map[r], dir);
-                const size_t s = static_cast<size_t>(q.slot[r]);
-                b.acc_r[s] += q.wr[r] * l.x, b.acc_g[s] += q.wg[r] * l.y,
-                    b.acc_b[s] += q.wb[r] * l.z;
-                continue;
-            }
+            if (b.hits.prim[r] < 0) continue;
             ++b.material_count[scene.objects[size_t(b.hits.object[r])].material + 1];
+        }
+        // misses: the environment (or background) W rays at a time
+        for (int base = 0; base < q.size; base += W) {
+            const size_t i = static_cast<size_t>(base);
+            const int lanes = std::min(W, q.size - base);
+            const vmask<W> live = mask_from_bits<W>(lanes >= 32 ? ~0u : (1u << lanes) - 1u);
+            const vmask<W> miss = mask_and(live, lt(load<W>(&b.hits.prim[i]), vint<W>(0)));
+            if (none(miss)) continue;
+            const Vec3<W> dir = load_vec3<W>(&q.dx[i], &q.dy[i], &q.dz[i]);
+            const Vec3<W> w = load_vec3<W>(&q.wr[i], &q.wg[i], &q.wb[i]);
+            const Vec3<W> l = miss_radiance<W>(scene, load<W>(&q.env_map[i]), dir, miss);
+            const Vec3<W> add = w * l;
+            for_each_active(miss, [&](int k) {
+                const size_t sl = static_cast<size_t>(q.slot[i + size_t(k)]);
+                b.acc_r[sl] += get(add.x, k), b.acc_g[sl] += get(add.y, k);
+                b.acc_b[sl] += get(add.z, k);
+            });
         }
         // counting sort of the hits by material (stable: tile order within a material)
         for (size_t m = 1; m <= materials; ++m) b.material_count[m] += b.material_count[m - 1];

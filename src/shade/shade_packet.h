@@ -102,6 +102,24 @@ inline vint<W> child_keys(const vint<W>& key, uint32_t purpose, uint32_t index) 
 
 }  // namespace shade_detail
 
+/// miss_radiance of shade_scalar.h for W rays: each lane's map (`env_map`, else the scene's
+/// environment), else the background.
+template <int W>
+inline Vec3<W> miss_radiance(const Scene& scene, const vint<W>& env_map, const Vec3<W>& dir,
+                             vmask<W> active) {
+    const vint<W> map = select(lt(env_map, vint<W>(0)), vint<W>(scene.environment), env_map);
+    Vec3<W> out = shade_detail::bc<W>(scene.background);
+    // one look-up per distinct map among the lanes (almost always one)
+    vmask<W> todo = mask_andnot(active, lt(map, vint<W>(0)));
+    while (any(todo)) {
+        const int32_t t = get(map, first_active(todo));
+        const vmask<W> same = mask_and(todo, eq(map, vint<W>(t)));
+        out = select(same, environment_lookup<W>(scene.textures[size_t(t)], dir, same), out);
+        todo = mask_andnot(todo, same);
+    }
+    return out;
+}
+
 /// Shades k <= W hits of material `m`: queue entries idx[0..k) of `q` with hits `h`.
 /// `pixel` maps a tile slot to the image pixel index (the random numbers' counter).
 template <int W, uint32_t F>

@@ -23,9 +23,9 @@ struct Uv {
 
 namespace texture_detail {
 
-// floor, round (half away from zero), atan2, asin lane by lane: std:: at W = 1, xsimd above.
-// floor and round are exact, so they agree at every W; atan2 and asin do not (xsimd's
-// polynomials are within a few ulps of std::).
+// floor, round (half away from zero), atan2, asin lane by lane: floor and round are exact in
+// xsimd, so they agree at every W; atan2 and asin call std:: per lane, because a texel chosen by
+// nearest look-up flips on a one-ulp difference and the two paths must see the same texel.
 inline float floor_lanes(float v) { return std::floor(v); }
 inline float round_lanes(float v) { return std::round(v); }
 inline float atan2_lanes(float y, float x) { return std::atan2(y, x); }
@@ -40,11 +40,19 @@ inline PFloat<A> round_lanes(const PFloat<A>& v) {
 }
 template <class A>
 inline PFloat<A> atan2_lanes(const PFloat<A>& y, const PFloat<A>& x) {
-    return xsimd::atan2(y, x);
+    constexpr size_t n = PFloat<A>::size;
+    alignas(64) float ys[n], xs[n];
+    y.store_aligned(ys), x.store_aligned(xs);
+    for (size_t i = 0; i < n; ++i) ys[i] = std::atan2(ys[i], xs[i]);
+    return PFloat<A>::load_aligned(ys);
 }
 template <class A>
 inline PFloat<A> asin_lanes(const PFloat<A>& v) {
-    return xsimd::asin(v);
+    constexpr size_t n = PFloat<A>::size;
+    alignas(64) float vs[n];
+    v.store_aligned(vs);
+    for (size_t i = 0; i < n; ++i) vs[i] = std::asin(vs[i]);
+    return PFloat<A>::load_aligned(vs);
 }
 
 /// wrap_coordinate of texture_scalar.cpp: repeat outside [0, 1], then clamp to [0, 1], NaN -> 0.
