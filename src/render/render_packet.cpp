@@ -33,9 +33,24 @@ void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays
     vmask<W> hit[max_packets];
     vint<W> nodes[max_packets];
     if (aov == Aov::bvh_cost) {
+        // the cost of each ray on its own (a packet's traversal would give every lane the
+        // packet's count): single-lane traversals, the scalar path's node counts
         for (int p = 0; p < count; ++p) {
             nodes[p] = vint<W>(0);
-            hits[p] = intersect_closest(scene, accel, rays[p], active[p], &nodes[p]);
+            hits[p] = HitPacket<W>{};
+            for_each_active(active[p], [&](int i) {
+                RayPacket<1> one;
+                one.org = make_vec3<1>(get(rays[p].org.x, i), get(rays[p].org.y, i),
+                                       get(rays[p].org.z, i));
+                one.dir = make_vec3<1>(get(rays[p].dir.x, i), get(rays[p].dir.y, i),
+                                       get(rays[p].dir.z, i));
+                one.t_min = get(rays[p].t_min, i);
+                one.t_max = get(rays[p].t_max, i);
+                int32_t n = 0;
+                const HitPacket<1> h = intersect_closest<1>(scene, accel, one, true, &n);
+                set(nodes[p], i, n);
+                set(hits[p].t, i, h.t);
+            });
         }
     } else {
         intersect_closest_block(scene, accel, rays, active, hits, count);
@@ -337,6 +352,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     return result;
 }
 
+#ifndef RAYLANE_SANITIZED
 /// The kernel feature set for a scene: groups of features, so 16 kernels cover every scene.
 uint32_t kernel_features(uint32_t scene) {
     uint32_t f = 0;
@@ -382,14 +398,22 @@ RenderResult dispatch(uint32_t f, const Scene& scene, const Accel& accel,
     }
 }
 
+#endif
+
 }  // namespace
 
 template <int W>
 RenderResult render_packet_width(const Scene& scene, const Accel& accel,
                                  const RenderParams& params) {
+#ifdef RAYLANE_SANITIZED
+    // sanitizer builds compile the generic kernel only (16 kernels take too long to build there;
+    // the release tests check that every specialised kernel gives the generic kernel's image)
+    return render_packet_features<W, kernel_features_all>(scene, accel, params);
+#else
     if (params.generic_kernel || W != native_width)
         return render_packet_features<W, kernel_features_all>(scene, accel, params);
     return dispatch<W>(kernel_features(scene_features(scene)), scene, accel, params);
+#endif
 }
 
 RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderParams& params) {
