@@ -104,8 +104,13 @@ void check_size(const std::string& name, int64_t width, int64_t height) {
 bool is_png(std::string_view bytes) {
     return bytes.size() >= 8 && bytes.substr(0, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8);
 }
-bool is_jpeg(std::string_view bytes) {
-    return bytes.size() >= 2 && byte_at(bytes, 0) == 0xff && byte_at(bytes, 1) == 0xd8;
+/// Where a JPEG's first segment starts (after SOI, which stb accepts after 0xff fill bytes),
+/// or 0 when the bytes are no JPEG.
+size_t jpeg_start(std::string_view bytes) {
+    if (bytes.empty() || byte_at(bytes, 0) != 0xff) return 0;
+    size_t i = 1;
+    while (i < bytes.size() && byte_at(bytes, i) == 0xff) ++i;
+    return i < bytes.size() && byte_at(bytes, i) == 0xd8 ? i + 1 : 0;
 }
 
 /// PNG: the IHDR size is read here, before stb, whose own probe refuses large sizes with a
@@ -116,34 +121,46 @@ void check_png_header(const std::string& name, std::string_view bytes) {
     check_size(name, big_endian32(bytes, 16), big_endian32(bytes, 20));
 }
 
-/// JPEG: stb_image decodes a cut-off file without complaint (the missing scan data reads as
-/// zeros), so the file must hold an end-of-image marker after the first start-of-scan. Marker
-/// segments are walked from the start so that the EOI of an embedded EXIF thumbnail (inside
-/// APP1, before the scan) does not count; inside scan data a 0xff byte is always stuffed
-/// (ff 00) or a restart marker, so ff d9 there is the real end. An unusual layout the walk
-/// cannot follow is left to stb.
-void check_jpeg_complete(const std::string& name, std::string_view bytes) {
-    size_t pos = 2;  // after SOI
+/// JPEG: walks the marker segments the way stb_image 2.27 reads them (bytes between segments
+/// skipped, 0xff fill bytes, entropy-coded data up to the next marker other than a stuffed
+/// ff 00 or a restart) and rejects two files stb mis-handles:
+/// - no end-of-image marker: stb decodes a cut-off file without complaint, the missing scan
+///   data reading as zeros;
+/// - a Huffman table (DHT) of more than 256 codes: stb writes past its 257-entry size list
+///   (fixed in stb_image 2.28; found by the mutation test under UBSan).
+/// EOIs inside APPn segments (an EXIF thumbnail) are skipped with their segment.
+void check_jpeg(const std::string& name, std::string_view bytes, size_t start) {
+    const size_t size = bytes.size();
+    size_t pos = start;
     for (;;) {
-        if (pos + 4 > bytes.size()) fail(name, "truncated JPEG (ends before the scan data)");
-        if (byte_at(bytes, pos) != 0xff) return;
+        while (pos < size && byte_at(bytes, pos) != 0xff) ++pos;          // padding stb skips too
+        while (pos + 1 < size && byte_at(bytes, pos + 1) == 0xff) ++pos;  // fill bytes
+        if (pos + 1 >= size) fail(name, "truncated JPEG (no end-of-image marker)");
         const uint8_t marker = byte_at(bytes, pos + 1);
-        if (marker == 0xff) {  // fill byte
-            ++pos;
-            continue;
+        pos += 2;
+        if (marker == 0xd9) return;                                          // EOI
+        if (marker == 0x01 || (marker >= 0xd0 && marker <= 0xd8)) continue;  // no length field
+        if (pos + 2 > size) fail(name, "truncated JPEG (no end-of-image marker)");
+        const size_t length = size_t{byte_at(bytes, pos)} << 8 | byte_at(bytes, pos + 1);
+        const size_t end = pos + length;  // the segment, its length field included
+        if (marker == 0xc4) {  // DHT: tables of (class/id, 16 counts, sum-of-counts values)
+            for (size_t table = pos + 2; table + 17 <= end && table + 17 <= size;) {
+                size_t codes = 0;
+                for (size_t i = 1; i <= 16; ++i) codes += byte_at(bytes, table + i);
+                if (codes > 256)
+                    fail(name, "corrupt JPEG: Huffman table of " + std::to_string(codes) +
+                                   " codes (at most 256)");
+                table += 17 + codes;
+            }
         }
-        if (marker == 0x01 || (marker >= 0xd0 && marker <= 0xd8)) {  // no length field
-            pos += 2;
-            continue;
+        pos = end;
+        if (marker == 0xda) {  // SOS: entropy-coded data follows up to the next real marker
+            for (; pos + 1 < size; ++pos) {
+                if (byte_at(bytes, pos) != 0xff) continue;
+                const uint8_t next = byte_at(bytes, pos + 1);
+                if (next != 0x00 && next != 0xff && (next < 0xd0 || next > 0xd7)) break;
+            }
         }
-        if (marker == 0xd9) return;  // EOI before any scan: stb reports it
-        const size_t segment = size_t{byte_at(bytes, pos + 2)} << 8 | byte_at(bytes, pos + 3);
-        if (marker == 0xda) {
-            for (size_t i = pos + 2 + segment; i + 1 < bytes.size(); ++i)
-                if (byte_at(bytes, i) == 0xff && byte_at(bytes, i + 1) == 0xd9) return;
-            fail(name, "truncated JPEG (no end-of-image marker after the scan data)");
-        }
-        pos += 2 + segment;
     }
 }
 
@@ -239,14 +256,15 @@ Texture load_texture_from_memory(std::string_view bytes, const std::string& name
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int length = static_cast<int>(bytes.size());
 
-    // Everything about the size is settled from the header, before any decoding.
+    // Everything about the size is settled from the header, before any decoding. A JPEG's
+    // segments are checked before stb's header probe, which already reads Huffman tables.
     if (is_png(bytes)) check_png_header(name, bytes);
+    if (const size_t start = jpeg_start(bytes); start != 0) check_jpeg(name, bytes, start);
     int width = 0, height = 0, channels = 0;
     if (stbi_info_from_memory(data, length, &width, &height, &channels) == 0)
         fail(name, "not a PNG, JPEG or Radiance HDR image (" + stb_reason() + ")");
     check_size(name, width, height);
     const bool hdr = stbi_is_hdr_from_memory(data, length) != 0;
-    if (is_jpeg(bytes)) check_jpeg_complete(name, bytes);
     if (hdr) check_hdr_pixels(name, bytes, width, height);
 
     Texture texture;
