@@ -144,9 +144,12 @@ void check_jpeg(const std::string& name, std::string_view bytes, size_t start) {
         const size_t length = size_t{byte_at(bytes, pos)} << 8 | byte_at(bytes, pos + 1);
         const size_t end = pos + length;  // the segment, its length field included
         if (marker == 0xc4) {  // DHT: tables of (class/id, 16 counts, sum-of-counts values)
-            for (size_t table = pos + 2; table + 17 <= end && table + 17 <= size;) {
+            // as stb: a table starts wherever the segment has bytes left, and its counts may
+            // run past the segment (past the end of the file they read as 0)
+            for (size_t table = pos + 2; table < end;) {
                 size_t codes = 0;
-                for (size_t i = 1; i <= 16; ++i) codes += byte_at(bytes, table + i);
+                for (size_t i = 1; i <= 16 && table + i < size; ++i)
+                    codes += byte_at(bytes, table + i);
                 if (codes > 256)
                     fail(name, "corrupt JPEG: Huffman table of " + std::to_string(codes) +
                                    " codes (at most 256)");

@@ -124,25 +124,28 @@ bool positive(double v) { return v > 0.0 && std::isfinite(v); }
 }  // namespace
 
 std::optional<double> time_at_error(std::span<const double> times, std::span<const double> errors,
-                                    double error, double slack) {
+                                    double error, double slack, double min_slope) {
     const size_t n = std::min(times.size(), errors.size());
     if (n == 0 || !positive(error)) return std::nullopt;
     for (size_t i = 0; i < n; ++i)
         if (!positive(times[i]) || !positive(errors[i])) return std::nullopt;
+    std::optional<double> best;
+    auto offer = [&](double t) {
+        if (std::isfinite(t) && (!best || t < *best)) best = t;
+    };
     for (size_t i = 0; i + 1 < n; ++i) {
         const double lo = std::min(errors[i], errors[i + 1]);
         const double hi = std::max(errors[i], errors[i + 1]);
-        if (error >= lo && error <= hi)
-            return segment_time(times[i], errors[i], times[i + 1], errors[i + 1], error);
+        if (!(error >= lo && error <= hi)) continue;
+        const double slope =
+            std::log(errors[i + 1] / errors[i]) / std::log(times[i + 1] / times[i]);
+        if (min_slope > 0.0 && !(std::fabs(slope) >= min_slope)) continue;  // flat, or t0 = t1
+        offer(segment_time(times[i], errors[i], times[i + 1], errors[i + 1], error));
     }
     const double limit = std::log1p(std::max(0.0, slack));
-    for (size_t i = 0; i < n; ++i) {
-        if (!(std::fabs(std::log(error / errors[i])) <= limit)) continue;
-        if (n == 1) return times[0];
-        const size_t j = i + 1 < n ? i : i - 1;  // the segment from i (the last one for the end)
-        return segment_time(times[j], errors[j], times[j + 1], errors[j + 1], error);
-    }
-    return std::nullopt;
+    for (size_t i = 0; i < n; ++i)
+        if (std::fabs(std::log(error / errors[i])) <= limit) offer(times[i]);
+    return best;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -636,10 +639,11 @@ Curve curve_of(std::span<const SweepPoint> points, RenderPath path, SweepKnob kn
 }
 
 std::vector<std::optional<double>> speedup_at_equal_error(const Curve& slow, const Curve& fast,
-                                                          double slack) {
+                                                          double slack, double min_slope) {
     std::vector<std::optional<double>> out;
     for (size_t i = 0; i < fast.rmse.size(); ++i) {
-        const std::optional<double> t = time_at_error(slow.seconds, slow.rmse, fast.rmse[i], slack);
+        const std::optional<double> t =
+            time_at_error(slow.seconds, slow.rmse, fast.rmse[i], slack, min_slope);
         if (t && fast.seconds[i] > 0.0)
             out.push_back(*t / fast.seconds[i]);
         else

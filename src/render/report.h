@@ -59,14 +59,16 @@ LineFit fit_loglog(std::span<const double> x, std::span<const double> y);
 /// to reach error X"); nullopt when the fit is unusable (b NaN or 0) or y <= 0.
 std::optional<double> x_at_fit(const LineFit& fit, double y);
 
-/// The time at which a curve reaches `error`: linear interpolation in (log t, log error)
-/// between the first pair of consecutive points (in the given order, normally increasing
-/// samples) whose errors bracket it. When none does, `slack` >= 0 accepts an error within a
-/// factor (1 + slack) of a point, extrapolating the segment from that point (the last segment
-/// for the last point): two paths with the same estimator have the same errors up to rounding,
-/// just beyond an end or a local extremum of the other curve. nullopt otherwise.
+/// The earliest time at which a curve reaches `error`: linear interpolation in (log t, log error)
+/// on every pair of consecutive points (in the given order, normally increasing samples) whose
+/// errors bracket it, and the smallest of those times. Segments flatter than `min_slope` (|d log
+/// error / d log t|) are skipped when min_slope > 0: on a bias floor or in noise the time at an
+/// error is ill-conditioned. `slack` >= 0 also offers a point's own time when `error` is within a
+/// factor (1 + slack) of its error: two paths with the same estimator have the same errors up to
+/// rounding, so one path's point can lie just outside the other's bracket. nullopt when nothing
+/// applies.
 std::optional<double> time_at_error(std::span<const double> times, std::span<const double> errors,
-                                    double error, double slack = 0.0);
+                                    double error, double slack = 0.0, double min_slope = 0.0);
 
 // ---------------------------------------------------------------------------------------------
 // References (error-vs-time.md section 2)
@@ -196,8 +198,11 @@ struct Curve {
 Curve curve_of(std::span<const SweepPoint> points, RenderPath path, SweepKnob knob);
 
 /// Speed-up of `fast` over `slow` at each of fast's points: t_slow(RMSE) / t_fast, t_slow by
-/// time_at_error with `slack`; nullopt where that RMSE is outside slow's range.
+/// time_at_error with `slack` and `min_slope`; nullopt where that RMSE is outside slow's range
+/// or only on its flat parts. The default slack (0.1 %) covers the rounding differences of two
+/// paths with the same estimator and no more.
 std::vector<std::optional<double>> speedup_at_equal_error(const Curve& slow, const Curve& fast,
-                                                          double slack = 0.05);
+                                                          double slack = 1e-3,
+                                                          double min_slope = 0.1);
 
 }  // namespace raylane

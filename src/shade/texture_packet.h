@@ -1,5 +1,5 @@
 // shade: texture lookup, environment mapping and normal maps for W lanes, the packet path.
-// Mirrors texture_scalar.h operation by operation; only latlong_uv's atan2 / asin differ (xsimd's).
+// Mirrors texture_scalar.h operation by operation: every lane is bit-identical to the scalar.
 #pragma once
 
 #include <cmath>
@@ -160,9 +160,8 @@ inline Vec3<W> texture_lookup(const Texture& t, vfloat<W> u, vfloat<W> v, vmask<
     return texture_lookup<W>(t, u, v, active, t.repeat, t.repeat);
 }
 
-/// latlong_uv of texture_scalar.h for every lane. At W = 1 bit-identical; at W > 1 atan2 and
-/// asin are xsimd's, so u and v may differ from the scalar ones by a few ulps (the tests bound
-/// the difference by 1e-6 absolute; u, v are in [0, 1]).
+/// latlong_uv of texture_scalar.h for every lane, bit-identical (atan2 and asin are std::'s,
+/// lane by lane).
 template <int W>
 inline Uv<W> latlong_uv(const Vec3<W>& dir) {
     using namespace texture_detail;

@@ -393,13 +393,45 @@ TEST(LoadTexture, RejectsTruncatedPngs) {
     expect_memory_error(std::string_view(real).substr(0, real.size() / 2), "");
 }
 
-TEST(LoadTexture, RejectsTruncatedJpegs) {
+std::string jpeg_bytes(int width, int height, const std::vector<uint8_t>& pixels) {
+    std::string bytes;
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                   static_cast<size_t>(size));
+    };
+    EXPECT_NE(stbi_write_jpg_to_func(append, &bytes, width, height, 3, pixels.data(), 90), 0);
+    return bytes;
+}
+
+std::string hdr_bytes(int width, int height, const std::vector<float>& texels) {
+    std::string bytes;
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                   static_cast<size_t>(size));
+    };
+    EXPECT_NE(stbi_write_hdr_to_func(append, &bytes, width, height, 3, texels.data()), 0);
+    return bytes;
+}
+
+TEST(LoadTexture, RejectsTruncatedAndCorruptJpegs) {
     // stb_image alone decodes a cut-off JPEG without an error (the missing data reads as zeros)
     const std::string real = read_file(shared_dir + "/textures/envMap3.jpg");
     for (size_t keep : {size_t{200}, real.size() / 3, real.size() - 2}) {
         SCOPED_TRACE(keep);
         expect_memory_error(std::string_view(real).substr(0, keep), "truncated JPEG");
+        // stb also accepts 0xff fill bytes before the start-of-image marker
+        std::string filled(1, '\xff');
+        filled.append(real, 0, keep);
+        expect_memory_error(filled, "truncated JPEG");
     }
+    // a Huffman table of more than 256 codes (stb_image 2.27 writes past its tables, already
+    // in the header probe): one count of the first DHT table raised
+    std::string jpeg = jpeg_bytes(16, 16, random_bytes(16 * 16 * 3, 10));
+    EXPECT_EQ(load_texture_from_memory(jpeg, "good.jpg").width, 16);
+    const size_t dht = jpeg.find("\xff\xc4");
+    ASSERT_NE(dht, std::string::npos);
+    jpeg[dht + 4 + 1 + 15] = static_cast<char>(250);  // marker, length, class/id, 16th count
+    expect_memory_error(jpeg, "Huffman table of");
 }
 
 TEST(LoadTexture, RejectsTruncatedAndCorruptHdrsWithoutHanging) {
@@ -485,26 +517,6 @@ void load_mutations(const std::string& good, const std::string& name, uint32_t s
             EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
         }
     }
-}
-
-std::string jpeg_bytes(int width, int height, const std::vector<uint8_t>& pixels) {
-    std::string bytes;
-    auto append = [](void* context, void* data, int size) {
-        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
-                                                   static_cast<size_t>(size));
-    };
-    EXPECT_NE(stbi_write_jpg_to_func(append, &bytes, width, height, 3, pixels.data(), 90), 0);
-    return bytes;
-}
-
-std::string hdr_bytes(int width, int height, const std::vector<float>& texels) {
-    std::string bytes;
-    auto append = [](void* context, void* data, int size) {
-        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
-                                                   static_cast<size_t>(size));
-    };
-    EXPECT_NE(stbi_write_hdr_to_func(append, &bytes, width, height, 3, texels.data()), 0);
-    return bytes;
 }
 
 TEST(LoadTexture, SurvivesRandomMutationsOfSmallFiles) {

@@ -150,10 +150,10 @@ TEST(TimeAtError, InterpolatesLinearlyInLogLog) {
     EXPECT_FALSE(time_at_error(t, e, 0.0).has_value());
 }
 
-TEST(TimeAtError, SlackExtrapolatesTheEndSegmentsALittle) {
+TEST(TimeAtError, SlackMatchesAPointWithinTheFactor) {
     const std::vector<double> t{1.0, 2.0, 4.0}, e{1.0, 0.5, 0.25};
-    EXPECT_NEAR(*time_at_error(t, e, 1.02, 0.05), 1.0 / 1.02, 1e-12);
-    EXPECT_NEAR(*time_at_error(t, e, 0.245, 0.05), 1.0 / 0.245, 1e-12);
+    EXPECT_EQ(*time_at_error(t, e, 1.02, 0.05), 1.0);
+    EXPECT_EQ(*time_at_error(t, e, 0.245, 0.05), 4.0);
     EXPECT_FALSE(time_at_error(t, e, 1.2, 0.05).has_value());
 }
 
@@ -161,18 +161,33 @@ TEST(TimeAtError, SlackCoversAPointJustAboveALocalMaximum) {
     // 2 spp noisier than the 1-spp pixel centre: the peak at 2 s brackets nothing above it
     const std::vector<double> t{1.0, 2.0, 4.0}, e{0.5, 0.6, 0.3};
     EXPECT_FALSE(time_at_error(t, e, 0.6 * 1.001).has_value());
-    EXPECT_NEAR(*time_at_error(t, e, 0.6 * 1.001, 0.05),
-                2.0 * std::pow(2.0, std::log(1.001) / std::log(0.5)), 1e-12);
+    EXPECT_EQ(*time_at_error(t, e, 0.6 * 1.001, 0.05), 2.0);
 }
 
-TEST(TimeAtError, UsesTheFirstBracketingSegmentOfANonMonotoneCurve) {
+TEST(TimeAtError, MinSlopeSkipsFlatSegments) {
+    // a noisy plateau between 2 s and 4 s: there the time at an error is ill-conditioned
+    const std::vector<double> t{1.0, 2.0, 4.0, 8.0}, e{0.4, 0.2, 0.198, 0.1};
+    const double flat = 2.0 * std::pow(2.0, std::log(0.199 / 0.2) / std::log(0.198 / 0.2));
+    EXPECT_NEAR(*time_at_error(t, e, 0.199), flat, 1e-12);
+    EXPECT_FALSE(time_at_error(t, e, 0.199, 0.0, 0.1).has_value());
+    EXPECT_EQ(*time_at_error(t, e, 0.199, 0.01, 0.1), 2.0);  // the nearest points' earliest
+    EXPECT_NEAR(*time_at_error(t, e, 0.15, 0.0, 0.1),
+                4.0 * std::pow(2.0, std::log(0.15 / 0.198) / std::log(0.1 / 0.198)), 1e-12);
+}
+
+TEST(TimeAtError, TakesTheEarliestTimeOnANonMonotoneCurve) {
     // error flattens and rises again at the end (a bias floor plus noise)
     const std::vector<double> t{1.0, 2.0, 4.0, 8.0}, e{0.4, 0.1, 0.05, 0.08};
     EXPECT_NEAR(*time_at_error(t, e, 0.2), 2.0 * std::pow(0.5, std::log(0.5) / std::log(0.25)),
                 1e-12);
-    // 0.06 is bracketed by (2 s, 0.1)-(4 s, 0.05) and again by (4 s, 0.05)-(8 s, 0.08): the first
+    // 0.06 is bracketed by (2 s, 0.1)-(4 s, 0.05) and again by (4 s, 0.05)-(8 s, 0.08)
     EXPECT_NEAR(*time_at_error(t, e, 0.06), 2.0 * std::pow(2.0, std::log(0.6) / std::log(0.5)),
                 1e-12);
+    // 2 spp noisier than the 1-spp pixel centre: an error a hair below the first point is
+    // bracketed only by the later segment (2 s, 0.6)-(4 s, 0.3), but is reached at about 1 s
+    const std::vector<double> t2{1.0, 2.0, 4.0}, e2{0.5, 0.6, 0.3};
+    EXPECT_GT(*time_at_error(t2, e2, 0.5 * (1.0 - 1e-9)), 2.0);
+    EXPECT_EQ(*time_at_error(t2, e2, 0.5 * (1.0 - 1e-9), 0.05), 1.0);
 }
 
 TEST(SpeedupAtEqualError, IsTheTimeRatioForTheSameCurveFaster) {
