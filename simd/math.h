@@ -73,6 +73,24 @@ inline PMask<A> is_nan(const PFloat<A>& v) {
     return ~(v == v);
 }
 
+// ---- lane by lane ---------------------------------------------------------------------------
+
+/// f (a scalar float function, e.g. std::cos) applied to every lane in turn: the scalar path's
+/// bits at every W, where a vector approximation (xsimd's cos, sin, atan2) would differ by ulps
+/// and move a sample across an edge. For rare, cheap-to-call uses (lens and disc samples).
+template <class F>
+inline float map_lanes(float v, F f) {
+    return f(v);
+}
+template <class A, class F>
+inline PFloat<A> map_lanes(const PFloat<A>& v, F f) {
+    constexpr size_t n = PFloat<A>::size;
+    alignas(64) float lanes[n];
+    v.store_aligned(lanes);
+    for (size_t i = 0; i < n; ++i) lanes[i] = f(lanes[i]);
+    return PFloat<A>::load_aligned(lanes);
+}
+
 // ---- int32 arithmetic -----------------------------------------------------------------------
 // Lanes read as uint32: results wrap modulo 2^32 at every W (never signed overflow at W = 1).
 

@@ -42,8 +42,15 @@ int run_compare(const CompareOptions& o) {
     std::printf("PSNR         %.1f dB\n", d.psnr_db);
     std::printf("> 1/255      %zu of %zu pixels\n", d.pixels_over_8bit, pixels);
     std::printf("hit ids      %zu of %zu primary hits differ\n", ids, pixels);
+    std::printf("NaN / Inf    scalar %llu / %llu, packet %llu / %llu samples\n",
+                static_cast<unsigned long long>(scalar.stats.nan_samples),
+                static_cast<unsigned long long>(scalar.stats.inf_samples),
+                static_cast<unsigned long long>(packet.stats.nan_samples),
+                static_cast<unsigned long long>(packet.stats.inf_samples));
+    // strict: a NaN or infinite sample in either path is a failure, as in the tests
     const bool ok = d.max_abs <= o.tolerance && ids <= o.id_allowance &&
-                    scalar.stats.shadow_rays == packet.stats.shadow_rays;
+                    scalar.stats.shadow_rays == packet.stats.shadow_rays &&
+                    scalar.stats.bad_samples() == 0 && packet.stats.bad_samples() == 0;
     if (scalar.stats.shadow_rays != packet.stats.shadow_rays)
         std::printf("shadow rays  %llu scalar, %llu packet\n",
                     static_cast<unsigned long long>(scalar.stats.shadow_rays),

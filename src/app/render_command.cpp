@@ -22,6 +22,7 @@ struct RenderOptions {
     int spp = 0, threads = 0, width = 0, height = 0;
     uint32_t seed = 0;
     bool quiet = false;
+    bool strict = false;
 };
 
 std::string default_output(const RenderOptions& o) {
@@ -82,10 +83,17 @@ int run_render(const RenderOptions& o) {
                 1000.0 * s.seconds);
     std::printf("speed      %.2f Mrays/s\n",
                 s.seconds > 0 ? double(s.total_rays()) / s.seconds * 1e-6 : 0.0);
-    if (s.nan_samples > 0)
-        std::printf("warning    %llu NaN or infinite samples were left out\n",
-                    static_cast<unsigned long long>(s.nan_samples));
+    if (s.bad_samples() > 0)
+        std::printf("warning    %llu NaN and %llu infinite samples were left out of their pixels\n",
+                    static_cast<unsigned long long>(s.nan_samples),
+                    static_cast<unsigned long long>(s.inf_samples));
     std::printf("image      %s\n", output.c_str());
+    if (o.strict && s.bad_samples() > 0) {
+        std::fprintf(stderr, "raylane: %s: %llu NaN and %llu infinite samples (--strict)\n",
+                     scene.source.c_str(), static_cast<unsigned long long>(s.nan_samples),
+                     static_cast<unsigned long long>(s.inf_samples));
+        return 3;
+    }
     return 0;
 }
 
@@ -110,6 +118,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--path", o->path, "renderer: packet (default) or scalar (the reference)")
         ->check(CLI::IsMember({"packet", "scalar"}));
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
+    cmd->add_flag("--strict", o->strict,
+                  "exit with status 3 when any sample is NaN or infinite (the image is written, "
+                  "without them)");
     cmd->callback([o, &exit_code] { exit_code = run_render(*o); });
 }
 

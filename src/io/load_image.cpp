@@ -114,11 +114,23 @@ size_t jpeg_start(std::string_view bytes) {
 }
 
 /// PNG: the IHDR size is read here, before stb, whose own probe refuses large sizes with a
-/// message that does not say what the limit is.
+/// message that does not say what the limit is. Then the chunks are walked (length, type, data,
+/// CRC) to reject an empty IDAT before any IDAT with data: stb_image 2.27 then copies zero bytes
+/// to a null buffer (undefined behaviour; found by fuzzing under UBSan).
 void check_png_header(const std::string& name, std::string_view bytes) {
     // signature (8), IHDR length (4), "IHDR" (4), width (4), height (4)
     if (bytes.size() < 24 || bytes.substr(12, 4) != "IHDR") return;  // stb reports it
     check_size(name, big_endian32(bytes, 16), big_endian32(bytes, 20));
+    for (size_t pos = 8; pos + 8 <= bytes.size();) {
+        const size_t length = big_endian32(bytes, pos);
+        const std::string_view type = bytes.substr(pos + 4, 4);
+        if (type == "IDAT") {
+            if (length == 0) fail(name, "corrupt PNG: empty IDAT chunk before the image data");
+            return;  // stb has a buffer from here on
+        }
+        if (type == "IEND" || length > bytes.size()) return;  // stb reports what is wrong
+        pos += 12 + length;
+    }
 }
 
 /// JPEG: walks the marker segments the way stb_image 2.27 reads them (bytes between segments

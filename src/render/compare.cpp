@@ -25,6 +25,9 @@ ImageDiff diff_images(const Film& a, const Film& b) {
             double diff = std::fabs(double(a.pixels[i][c]) - double(b.pixels[i][c]));
             if (!std::isfinite(diff)) diff = INFINITY;
             pixel_max = std::max(pixel_max, diff);
+            const double scale = std::max(
+                {1.0, std::fabs(double(a.pixels[i][c])), std::fabs(double(b.pixels[i][c]))});
+            d.max_rel = std::max(d.max_rel, std::isfinite(scale) ? diff / scale : INFINITY);
             sum_abs += diff;
             sum_sq += diff * diff;
         }

@@ -13,6 +13,7 @@ namespace raylane {
 /// difference of infinity).
 struct ImageDiff {
     double max_abs = 0.0;
+    double max_rel = 0.0;  ///< max |a - b| / max(1, |a|, |b|): rounding at any brightness
     double mean_abs = 0.0;
     double rmse = 0.0;
     double psnr_db = 0.0;         ///< 10 log10(1 / MSE), peak 1; +inf when identical

@@ -9,6 +9,7 @@
 #include "core/rng.h"
 #include "render/camera_rays_packet.h"
 #include "render/path_queue.h"
+#include "render/sample_sum_packet.h"
 #include "render/tiles.h"
 #include "scene/features.h"
 #include "shade/shade_packet.h"
@@ -17,12 +18,6 @@
 
 namespace raylane {
 namespace {
-
-template <int W>
-vmask<W> finite(const Vec3<W>& c) {
-    const vfloat<W> zero(0.0f);
-    return mask_and(mask_and(c.x - c.x == zero, c.y - c.y == zero), c.z - c.z == zero);
-}
 
 /// One sample's values of a non-colour AOV, for a block of packets (a tile).
 template <int W>
@@ -245,7 +240,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     const int tile_size = std::min(params.tile_size, 16);
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, tile_size);
     std::atomic<uint64_t> shadow_rays{0}, reflection_rays{0}, refraction_rays{0}, glossy_rays{0},
-        nan_samples{0};
+        nan_samples{0}, inf_samples{0};
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
     const vint<W> lane = lane_index<W>();
     const ShadeParams shade{params.light_samples, params.glossy_samples};
@@ -257,8 +252,9 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
         RayPacket<W> rays[max_packets];
         vmask<W> active[max_packets];
         vint<W> pixel[max_packets], xi[max_packets], slot[max_packets];
-        Vec3<W> sum[max_packets], value[max_packets];
-        vfloat<W> good[max_packets], yf[max_packets];
+        PixelSumPacket<W> sum[max_packets];
+        Vec3<W> value[max_packets];
+        vfloat<W> yf[max_packets];
         const int tile_w = tile.x1 - tile.x0;
         int count = 0;
         for (int y = tile.y0; y < tile.y1; ++y) {
@@ -269,15 +265,14 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 yf[count] = vfloat<W>(float(y));
                 pixel[count] = vint<W>(y * cam.width) + xi[count];
                 slot[count] = vint<W>((y - tile.y0) * tile_w - tile.x0) + xi[count];
-                sum[count] = make_vec3<W>(0.0f, 0.0f, 0.0f);
-                good[count] = vfloat<W>(0.0f);
+                sum[count] = PixelSumPacket<W>{};
                 for_each_active(active[count], [&](int i) {
                     b.pixel[get(slot[count], i)] = get(pixel[count], i);
                 });
             }
         }
         ShadeCounts counts;
-        uint64_t nans = 0;
+        uint64_t nans = 0, infs = 0;
         for (int s = 0; s < spp; ++s) {
             const vint<W> si(s), seed(static_cast<int32_t>(params.seed));
             for (int p = 0; p < count; ++p) {
@@ -320,15 +315,15 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 aov_values<W>(scene, accel, rays, active, count, params.aov, value);
             }
             for (int p = 0; p < count; ++p) {
-                const vmask<W> ok = mask_and(active[p], finite(value[p]));
-                sum[p] = select(ok, sum[p] + value[p], sum[p]);
-                good[p] = select(ok, good[p] + vfloat<W>(1.0f), good[p]);
-                nans += static_cast<uint64_t>(raylane::count(mask_andnot(active[p], ok)));
+                vmask<W> nan, inf;
+                sample_kinds<W>(value[p], nan, inf);
+                add_sample<W>(sum[p], value[p], mask_andnot(active[p], mask_or(nan, inf)));
+                nans += static_cast<uint64_t>(raylane::count(mask_and(active[p], nan)));
+                infs += static_cast<uint64_t>(raylane::count(mask_and(active[p], inf)));
             }
         }
         for (int p = 0; p < count; ++p) {
-            const Vec3<W> mean =
-                sum[p] / select(good[p] > vfloat<W>(0.0f), good[p], vfloat<W>(1.0f));
+            const Vec3<W> mean = pixel_mean<W>(sum[p]);
             const int x0 = get(xi[p], 0), y = static_cast<int>(get(yf[p], 0));
             for_each_active(active[p], [&](int i) {
                 result.film.at(x0 + i, y) = vec3(get(mean.x, i), get(mean.y, i), get(mean.z, i));
@@ -339,6 +334,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
         refraction_rays += counts.refraction_rays;
         glossy_rays += counts.glossy_rays;
         nan_samples += nans;
+        inf_samples += infs;
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
@@ -347,6 +343,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     result.stats.refraction_rays = refraction_rays;
     result.stats.glossy_rays = glossy_rays;
     result.stats.nan_samples = nan_samples;
+    result.stats.inf_samples = inf_samples;
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

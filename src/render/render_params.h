@@ -33,8 +33,10 @@ struct RenderStats {
     uint64_t reflection_rays = 0;
     uint64_t refraction_rays = 0;
     uint64_t glossy_rays = 0;
-    uint64_t nan_samples = 0;  ///< samples that were NaN or infinite: counted, not averaged in
+    uint64_t nan_samples = 0;  ///< samples with a NaN channel: counted, not averaged in
+    uint64_t inf_samples = 0;  ///< samples with an infinite channel (and no NaN): likewise
     double seconds = 0.0;
+    uint64_t bad_samples() const { return nan_samples + inf_samples; }
     uint64_t total_rays() const {
         return primary_rays + shadow_rays + reflection_rays + refraction_rays + glossy_rays;
     }

@@ -7,14 +7,13 @@
 
 #include "core/rng.h"
 #include "render/camera_rays.h"
+#include "render/sample_sum_scalar.h"
 #include "render/tiles.h"
 #include "shade/shade_scalar.h"
 #include "traverse/intersect_scalar.h"
 
 namespace raylane {
 namespace {
-
-bool finite(vec3 c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
 
 /// One sample's value for the requested output.
 vec3 sample_value(const Scene& scene, const Accel& accel, const Ray& ray, const SampleIndex& index,
@@ -52,17 +51,16 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     const int spp = params.spp > 0 ? params.spp : 1;
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size);
     std::atomic<uint64_t> shadow_rays{0}, reflection_rays{0}, refraction_rays{0}, glossy_rays{0},
-        nan_samples{0};
+        nan_samples{0}, inf_samples{0};
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
         ShadeCounts counts;
-        uint64_t nans = 0;
+        uint64_t nans = 0, infs = 0;
         for (int y = tile.y0; y < tile.y1; ++y) {
             for (int x = tile.x0; x < tile.x1; ++x) {
                 const uint32_t pixel = static_cast<uint32_t>(y * cam.width + x);
-                vec3 sum(0.0f);
-                int good = 0;
+                PixelSum sum;
                 for (int s = 0; s < spp; ++s) {
                     // sample position: the pixel centre, or stratified in the pixel
                     const uint32_t si = static_cast<uint32_t>(s);
@@ -81,14 +79,19 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
                                                static_cast<float>(y) + j.y, lu, lv);
                     const SampleIndex index{pixel, si, params.seed};
                     const vec3 value = sample_value(scene, accel, ray, index, params, counts);
-                    if (finite(value)) {
-                        sum += value;
-                        ++good;
-                    } else {
-                        ++nans;
+                    switch (sample_kind(value)) {
+                        case SampleKind::finite:
+                            add_sample(sum, value);
+                            break;
+                        case SampleKind::nan:
+                            ++nans;
+                            break;
+                        case SampleKind::inf:
+                            ++infs;
+                            break;
                     }
                 }
-                result.film.at(x, y) = good > 0 ? sum / static_cast<float>(good) : vec3(0.0f);
+                result.film.at(x, y) = pixel_mean(sum);
             }
         }
         shadow_rays += counts.shadow_rays;
@@ -96,6 +99,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
         refraction_rays += counts.refraction_rays;
         glossy_rays += counts.glossy_rays;
         nan_samples += nans;
+        inf_samples += infs;
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
@@ -104,6 +108,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     result.stats.refraction_rays = refraction_rays;
     result.stats.glossy_rays = glossy_rays;
     result.stats.nan_samples = nan_samples;
+    result.stats.inf_samples = inf_samples;
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

@@ -184,7 +184,7 @@ Reference render_converged_reference(const Scene& scene, const Accel& accel,
             for (int c = 0; c < 3; ++c)
                 sum[half][3 * i + static_cast<size_t>(c)] += double(r.film.pixels[i][c]) * p.spp;
         samples[half] += p.spp;
-        ref.nan_samples += r.stats.nan_samples;
+        ref.nan_samples += r.stats.bad_samples();
         ref.seconds += r.stats.seconds;
         if (progress) progress(k + 1, chunks);
     }
@@ -554,7 +554,7 @@ double SweepPoint::mrays_per_second() const {
 
 uint64_t SweepPoint::nan_samples() const {
     uint64_t n = 0;
-    for (const RenderStats& r : runs) n += r.nan_samples;
+    for (const RenderStats& r : runs) n += r.bad_samples();
     return n;
 }
 

@@ -19,19 +19,16 @@ struct LightSamplePacket {
     vmask<W> valid;
 };
 
+/// stratified_square of lights_scalar.h for every lane (one stratum, W jitters).
 template <int W>
 inline void stratified_square(int i, int n, const vfloat<W>& u1, const vfloat<W>& u2, vfloat<W>& sx,
                               vfloat<W>& sy) {
-    const int m = static_cast<int>(std::sqrt(static_cast<float>(n)));
-    if (i >= m * m) {
-        sx = u1, sy = u2;
-        return;
-    }
-    const float inv = 1.0f / static_cast<float>(m);
-    sx = (vfloat<W>(static_cast<float>(i % m)) + u1) * vfloat<W>(inv);
-    sy = (vfloat<W>(static_cast<float>(i / m)) + u2) * vfloat<W>(inv);
+    const Stratum s = stratum_of(i, n);
+    sx = (vfloat<W>(s.x0) + u1 * vfloat<W>(s.cells)) / vfloat<W>(s.n);
+    sy = (vfloat<W>(s.row) + u2) / vfloat<W>(s.cells);
 }
 
+/// concentric_disk of lights_scalar.h for every lane, bit-identical.
 template <int W>
 inline void concentric_disk(const vfloat<W>& sx, const vfloat<W>& sy, vfloat<W>& dx,
                             vfloat<W>& dy) {
@@ -44,8 +41,11 @@ inline void concentric_disk(const vfloat<W>& sx, const vfloat<W>& sy, vfloat<W>&
     const vfloat<W> phi = select(wide, vfloat<W>(quarter_pi) * (b / a),
                                  vfloat<W>(2.0f * quarter_pi) - vfloat<W>(quarter_pi) * (a / b));
     const vmask<W> centre = mask_and(a == zero, b == zero);
-    dx = select(centre, zero, r * cos(phi));
-    dy = select(centre, zero, r * sin(phi));
+    // std::cos and std::sin lane by lane: the scalar's bits, so lens rays and disc samples agree
+    const vfloat<W> c = map_lanes(phi, [](float x) { return std::cos(x); });
+    const vfloat<W> s = map_lanes(phi, [](float x) { return std::sin(x); });
+    dx = select(centre, zero, r * c);
+    dy = select(centre, zero, r * s);
 }
 
 template <int W>

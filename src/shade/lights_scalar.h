@@ -20,13 +20,31 @@ struct LightSample {
     bool valid = false;  ///< false when the point sits on the light (d = 0)
 };
 
-/// Stratified position in the unit square of sample i of n: the cell (i mod m, i div m) of an
-/// m x m grid, m = floor(sqrt(n)), jittered by (u1, u2); samples past m^2 are uniform.
-inline vec2 stratified_square(int i, int n, float u1, float u2) {
+/// The stratum of sample i of n in the unit square: n cells of equal area 1/n in m = floor(sqrt n)
+/// columns, the first n mod m columns holding one cell more than the others. Column widths are
+/// proportional to their cell counts, so every n is stratified (not only squares) and a uniform
+/// point in each cell gives a uniform, unbiased sample set.
+struct Stratum {
+    float x0 = 0.0f;     ///< left edge of the column times n: the index of its first cell
+    float cells = 1.0f;  ///< cells in the column; the column is cells / n wide
+    float row = 0.0f;    ///< the cell's row in its column (of height 1 / cells)
+    float n = 1.0f;
+};
+
+inline Stratum stratum_of(int i, int n) {
     const int m = static_cast<int>(std::sqrt(static_cast<float>(n)));
-    if (i >= m * m) return vec2(u1, u2);
-    const float inv = 1.0f / static_cast<float>(m);
-    return vec2((static_cast<float>(i % m) + u1) * inv, (static_cast<float>(i / m) + u2) * inv);
+    const int q = n / m, r = n % m;  // r columns of q + 1 cells, then m - r of q
+    const int tall = r * (q + 1);    // cells in the taller columns
+    const int cells = i < tall ? q + 1 : q;
+    const int first = i < tall ? i - i % cells : tall + (i - tall) - (i - tall) % cells;
+    return {static_cast<float>(first), static_cast<float>(cells), static_cast<float>(i - first),
+            static_cast<float>(n)};
+}
+
+/// Stratified position in the unit square of sample i of n (stratum_of), jittered by (u1, u2).
+inline vec2 stratified_square(int i, int n, float u1, float u2) {
+    const Stratum s = stratum_of(i, n);
+    return vec2((s.x0 + u1 * s.cells) / s.n, (s.row + u2) / s.cells);
 }
 
 /// Concentric map of the unit square to the unit disc (Shirley, Chiu, "A Low Distortion Map

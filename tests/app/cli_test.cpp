@@ -4,10 +4,12 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -104,6 +106,51 @@ TEST(Cli, RenderWritesTheImageAndReportsTiming) {
     for (const char* key : {"resolution", "rays", "load", "build", "render", "Mrays/s"})
         EXPECT_NE(r.out.find(key), std::string::npos) << key;
     EXPECT_FALSE(std::filesystem::exists(png + ".partial"));
+}
+
+/// Reads the floats of a PFM written by raylane (little-endian, 3 channels).
+std::vector<float> read_pfm_values(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    std::string magic;
+    int w = 0, h = 0;
+    double scale = 0;
+    f >> magic >> w >> h >> scale;
+    f.get();  // the single whitespace before the data
+    std::vector<float> v(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
+    f.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(v.size() * 4));
+    if (!f || magic != "PF") v.clear();
+    return v;
+}
+
+TEST(Cli, StrictRenderFailsOnInfiniteSamplesButWritesACleanImage) {
+    // c_d * k_d * intensity = 1e90 overflows float: every lit sample is infinite
+    const std::string scene = temp_file("raylane_cli_inf.json", R"({
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "fov_deg": 60,
+                   "resolution": [24, 24], "spp": 2},
+        "materials": {"hot": {"c_d": [1e30, 1, 1], "k_d": 1e30}},
+        "objects": [{"shape": "sphere", "center": [0, 0, 5], "radius": 2, "material": "hot"}],
+        "lights": [{"type": "point", "position": [0, 5, 0], "intensity": 1e30}]})");
+    const std::string pfm =
+        (std::filesystem::temp_directory_path() / "raylane_cli_inf.pfm").string();
+    for (const char* path : {"packet", "scalar"}) {
+        std::filesystem::remove(pfm);
+        const CliRun lax =
+            run("render " + scene + " -q --path " + std::string(path) + " -o " + pfm);
+        EXPECT_EQ(lax.code, 0) << lax.err;
+        EXPECT_NE(lax.out.find("infinite samples were left out"), std::string::npos) << lax.out;
+
+        std::filesystem::remove(pfm);
+        const CliRun strict =
+            run("render " + scene + " -q --strict --path " + std::string(path) + " -o " + pfm);
+        EXPECT_EQ(strict.code, 3) << path;
+        EXPECT_EQ(lines(strict.err), 1u) << strict.err;
+        EXPECT_NE(strict.err.find("infinite samples (--strict)"), std::string::npos) << strict.err;
+        const std::vector<float> values = read_pfm_values(pfm);
+        ASSERT_EQ(values.size(), 24u * 24u * 3u) << path;
+        for (float v : values) ASSERT_TRUE(std::isfinite(v)) << path;
+    }
+    // a clean scene passes --strict
+    EXPECT_EQ(run("render --width 32 -q --strict -o " + pfm).code, 0);
 }
 
 TEST(Cli, InfoPrintsBvhStatistics) {

@@ -413,6 +413,20 @@ std::string hdr_bytes(int width, int height, const std::vector<float>& texels) {
     return bytes;
 }
 
+TEST(LoadTexture, RejectsAnEmptyFirstIdatChunk) {
+    // stb would copy zero bytes to a null buffer (undefined behaviour) before failing
+    const std::string good = handmade_png(1, 1, 8, 0, std::string("\0\x80", 2));
+    const size_t idat = good.find("IDAT") - 4;
+    const std::string bad = good.substr(0, idat) + chunk("IDAT", "") + good.substr(idat);
+    expect_memory_error(bad, "empty IDAT");
+    // an empty IDAT after one with data is harmless and accepted
+    const size_t iend = good.find("IEND") - 4;
+    const std::string late = good.substr(0, iend) + chunk("IDAT", "") + good.substr(iend);
+    const Texture t = load_texture_from_memory(late, "late.png");
+    EXPECT_EQ(t.width, 1);
+    EXPECT_EQ(t.height, 1);
+}
+
 TEST(LoadTexture, RejectsTruncatedAndCorruptJpegs) {
     // stb_image alone decodes a cut-off JPEG without an error (the missing data reads as zeros)
     const std::string real = read_file(shared_dir + "/textures/envMap3.jpg");

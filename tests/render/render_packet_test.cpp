@@ -16,7 +16,8 @@ namespace raylane {
 namespace {
 
 // Agreement: shading runs the scalar formulas lane by lane; only pow (xsimd's vs std::pow) and
-// the order of a few sums may differ, so colours agree to a few ulps of their magnitude.
+// the order of a few sums may differ, so colours agree to a few ulps of their magnitude:
+// tested on ImageDiff::max_rel (relative above 1, absolute below).
 constexpr double colour_tolerance = 1e-5;
 
 template <class T>
@@ -108,9 +109,12 @@ TEST(RenderPacket, EverySceneFileAgreesWithTheScalarPath) {
         const RenderResult a = render_scalar(scene, accel, p);
         const RenderResult b = render_packet(scene, accel, p);
         const ImageDiff d = diff_images(a.film, b.film);
-        EXPECT_LE(d.max_abs, colour_tolerance) << entry.path();
+        EXPECT_LE(d.max_rel, colour_tolerance) << entry.path();
         EXPECT_EQ(d.pixels_over_8bit, 0u) << entry.path();
         EXPECT_EQ(primary_id_mismatches(scene, accel), 0u) << entry.path();
+        // strict: no scene of ours makes a NaN or infinite sample (numerics.md §18)
+        EXPECT_EQ(a.stats.nan_samples + a.stats.inf_samples, 0u) << entry.path();
+        EXPECT_EQ(b.stats.nan_samples + b.stats.inf_samples, 0u) << entry.path();
         // the image is not blank: a test on a black image proves nothing
         double sum = 0;
         for (const vec3& c : a.film.pixels) sum += c.x + c.y + c.z;
