@@ -140,10 +140,17 @@ void check_png_header(const std::string& name, std::string_view bytes) {
 ///   data reading as zeros;
 /// - a Huffman table (DHT) of more than 256 codes: stb writes past its 257-entry size list
 ///   (fixed in stb_image 2.28; found by the mutation test under UBSan).
+/// - a scan whose components use a Huffman table no DHT defined: stb decodes with its zeroed
+///   table and shifts by more than 31 bits (undefined behaviour; found by fuzzing under UBSan).
+///   A baseline scan uses its components' DC and AC tables; a progressive scan the DC table in
+///   a first DC pass (Ss = 0, Ah = 0), the AC table in an AC pass (Ss > 0).
 /// EOIs inside APPn segments (an EXIF thumbnail) are skipped with their segment.
 void check_jpeg(const std::string& name, std::string_view bytes, size_t start) {
     const size_t size = bytes.size();
+    auto byte_or_0 = [&](size_t i) { return i < size ? byte_at(bytes, i) : uint8_t{0}; };
     size_t pos = start;
+    uint32_t defined = 0;  // bit 4 * class + id of every Huffman table a DHT defined so far
+    bool progressive = false;
     for (;;) {
         while (pos < size && byte_at(bytes, pos) != 0xff) ++pos;          // padding stb skips too
         while (pos + 1 < size && byte_at(bytes, pos + 1) == 0xff) ++pos;  // fill bytes
@@ -165,7 +172,22 @@ void check_jpeg(const std::string& name, std::string_view bytes, size_t start) {
                 if (codes > 256)
                     fail(name, "corrupt JPEG: Huffman table of " + std::to_string(codes) +
                                    " codes (at most 256)");
+                const uint8_t th = byte_or_0(table);
+                if (th >> 4 <= 1 && (th & 15) <= 3) defined |= 1u << ((th >> 4) * 4 + (th & 15));
                 table += 17 + codes;
+            }
+        }
+        if (marker == 0xc2) progressive = true;  // SOF2
+        if (marker == 0xda) {  // SOS: Ns, Ns x (component, DC table << 4 | AC table), Ss, Se, Ah/Al
+            const size_t ns = byte_or_0(pos + 2);
+            const uint8_t ss = byte_or_0(pos + 3 + 2 * ns), ah = byte_or_0(pos + 5 + 2 * ns) >> 4;
+            const bool dc = !progressive || (ss == 0 && ah == 0), ac = !progressive || ss > 0;
+            for (size_t c = 0; c < ns && c < 4; ++c) {
+                const uint8_t tables = byte_or_0(pos + 4 + 2 * c);
+                const uint32_t td = tables >> 4, ta = tables & 15;
+                if ((dc && td <= 3 && !(defined >> td & 1u)) ||
+                    (ac && ta <= 3 && !(defined >> (4 + ta) & 1u)))
+                    fail(name, "corrupt JPEG: a scan uses a Huffman table that was not defined");
             }
         }
         pos = end;

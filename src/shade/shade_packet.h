@@ -120,46 +120,87 @@ inline Vec3<W> miss_radiance(const Scene& scene, const vint<W>& env_map, const V
     return out;
 }
 
-/// Shades k <= W hits of material `m`: queue entries idx[0..k) of `q` with hits `h`.
-/// `pixel` maps a tile slot to the image pixel index (the random numbers' counter).
-template <int W, uint32_t F>
-void shade_batch(const Scene& scene, const Material& m, const ShadeParams& params, int32_t sample,
-                 uint32_t seed, const int32_t* pixel_of_slot, const PathQueue& q,
-                 const HitArrays& h, const int32_t* idx, int k, const ShadeTarget& out) {
+/// What shading needs of W rays and their closest hits, in registers (the fields of a PathQueue
+/// entry, its hit, and the pixel index that keys its random numbers).
+template <int W>
+struct ShadeInput {
+    RayPacket<W> rays;
+    HitPacket<W> hits;
+    Vec3<W> weight;
+    vint<W> slot, key, refl_depth, refr_depth, env, pixel;
+    vmask<W> local_only;
+};
+
+/// Camera rays and their hits as shading input: weight 1, depth 0, the scene's environment.
+template <int W>
+inline ShadeInput<W> camera_shade_input(const RayPacket<W>& rays, const HitPacket<W>& hits,
+                                        const vint<W>& slot, const vint<W>& pixel) {
+    ShadeInput<W> in;
+    in.rays = rays;
+    in.hits = hits;
+    in.weight = make_vec3<W>(1.0f, 1.0f, 1.0f);
+    in.slot = slot;
+    in.key = vint<W>(0);
+    in.refl_depth = vint<W>(0);
+    in.refr_depth = vint<W>(0);
+    in.env = vint<W>(-1);
+    in.pixel = pixel;
+    in.local_only = vmask<W>(false);
+    return in;
+}
+
+/// Queue entries idx[0..k) of `q` with their hits `h` as shading input (gathers); `pixel_of_slot`
+/// maps a tile slot to the image pixel index. Lanes from k on are inactive.
+template <int W>
+inline ShadeInput<W> gather_shade_input(const PathQueue& q, const HitArrays& h,
+                                        const int32_t* pixel_of_slot, const int32_t* idx,
+                                        vmask<W> active) {
     using namespace shade_detail;
-    const ShadingOptions& o = scene.shading;
-    const vfloat<W> zero(0.0f), one(1.0f);
-    const vmask<W> active = mask_from_bits<W>(k >= 32 ? ~0u : (1u << k) - 1u);
     vint<W> ids;
     if constexpr (W == 1) {
         ids = idx[0];
     } else {
         ids = load<W>(idx);  // idx has room for W entries; lanes past k are masked
     }
-
-    RayPacket<W> rays;
-    rays.org = {gather_lanes<W>(q.ox, ids, active, 0.0f), gather_lanes<W>(q.oy, ids, active, 0.0f),
-                gather_lanes<W>(q.oz, ids, active, 0.0f)};
-    rays.dir = {gather_lanes<W>(q.dx, ids, active, 0.0f), gather_lanes<W>(q.dy, ids, active, 0.0f),
-                gather_lanes<W>(q.dz, ids, active, 1.0f)};
-    HitPacket<W> hits;
-    hits.t = gather_lanes<W>(h.t, ids, active, 0.0f);
-    hits.u = gather_lanes<W>(h.u, ids, active, 0.0f);
-    hits.v = gather_lanes<W>(h.v, ids, active, 0.0f);
-    hits.prim = gather_lanes<W>(h.prim, ids, active, int32_t{-1});
-    hits.object = gather_lanes<W>(h.object, ids, active, int32_t{-1});
-    const Vec3<W> weight = {gather_lanes<W>(q.wr, ids, active, 0.0f),
-                            gather_lanes<W>(q.wg, ids, active, 0.0f),
-                            gather_lanes<W>(q.wb, ids, active, 0.0f)};
-    const vint<W> slot = gather_lanes<W>(q.slot, ids, active, int32_t{0});
-    const vint<W> key = gather_lanes<W>(q.key, ids, active, int32_t{0});
-    const vint<W> refl_depth = gather_lanes<W>(q.reflection_depth, ids, active, int32_t{0});
-    const vint<W> refr_depth = gather_lanes<W>(q.refraction_depth, ids, active, int32_t{0});
-    const vint<W> env = gather_lanes<W>(q.env_map, ids, active, int32_t{-1});
-    const vmask<W> local_only =
+    ShadeInput<W> in;
+    in.rays.org = {gather_lanes<W>(q.ox, ids, active, 0.0f),
+                   gather_lanes<W>(q.oy, ids, active, 0.0f),
+                   gather_lanes<W>(q.oz, ids, active, 0.0f)};
+    in.rays.dir = {gather_lanes<W>(q.dx, ids, active, 0.0f),
+                   gather_lanes<W>(q.dy, ids, active, 0.0f),
+                   gather_lanes<W>(q.dz, ids, active, 1.0f)};
+    in.hits.t = gather_lanes<W>(h.t, ids, active, 0.0f);
+    in.hits.u = gather_lanes<W>(h.u, ids, active, 0.0f);
+    in.hits.v = gather_lanes<W>(h.v, ids, active, 0.0f);
+    in.hits.prim = gather_lanes<W>(h.prim, ids, active, int32_t{-1});
+    in.hits.object = gather_lanes<W>(h.object, ids, active, int32_t{-1});
+    in.weight = {gather_lanes<W>(q.wr, ids, active, 0.0f), gather_lanes<W>(q.wg, ids, active, 0.0f),
+                 gather_lanes<W>(q.wb, ids, active, 0.0f)};
+    in.slot = gather_lanes<W>(q.slot, ids, active, int32_t{0});
+    in.key = gather_lanes<W>(q.key, ids, active, int32_t{0});
+    in.refl_depth = gather_lanes<W>(q.reflection_depth, ids, active, int32_t{0});
+    in.refr_depth = gather_lanes<W>(q.refraction_depth, ids, active, int32_t{0});
+    in.env = gather_lanes<W>(q.env_map, ids, active, int32_t{-1});
+    in.local_only =
         mask_andnot(active, eq(gather_lanes<W>(q.local_only, ids, active, int32_t{0}), vint<W>(0)));
-    const vint<W> pixel =
-        float_as_int(gather(reinterpret_cast<const float*>(pixel_of_slot), slot, active));
+    in.pixel = float_as_int(gather(reinterpret_cast<const float*>(pixel_of_slot), in.slot, active));
+    return in;
+}
+
+/// Shades the `active` lanes of `in`, all hits of material `m`: adds their direct light and
+/// ambient term to the tile's slots, and queues shadow rays (per light) and secondary rays.
+template <int W, uint32_t F>
+void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params, int32_t sample,
+                uint32_t seed, const ShadeInput<W>& in, vmask<W> active, const ShadeTarget& out) {
+    using namespace shade_detail;
+    const ShadingOptions& o = scene.shading;
+    const vfloat<W> zero(0.0f), one(1.0f);
+    const RayPacket<W>& rays = in.rays;
+    const HitPacket<W>& hits = in.hits;
+    const Vec3<W>& weight = in.weight;
+    const vint<W>&slot = in.slot, &key = in.key, &pixel = in.pixel;
+    const vint<W>&refl_depth = in.refl_depth, &refr_depth = in.refr_depth, &env = in.env;
+    const vmask<W> local_only = mask_and(active, in.local_only);
 
     if (m.emissive()) {
         accumulate<W>(out, slot, weight * bc<W>(m.emission), active);
@@ -336,6 +377,16 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
             }
         }
     }
+}
+
+/// Shades k <= W hits of material `m`: queue entries idx[0..k) of `q` with hits `h`.
+template <int W, uint32_t F>
+void shade_batch(const Scene& scene, const Material& m, const ShadeParams& params, int32_t sample,
+                 uint32_t seed, const int32_t* pixel_of_slot, const PathQueue& q,
+                 const HitArrays& h, const int32_t* idx, int k, const ShadeTarget& out) {
+    const vmask<W> active = mask_from_bits<W>(k >= 32 ? ~0u : (1u << k) - 1u);
+    shade_hits<W, F>(scene, m, params, sample, seed,
+                     gather_shade_input<W>(q, h, pixel_of_slot, idx, active), active, out);
 }
 
 }  // namespace raylane

@@ -446,6 +446,18 @@ TEST(LoadTexture, RejectsTruncatedAndCorruptJpegs) {
     ASSERT_NE(dht, std::string::npos);
     jpeg[dht + 4 + 1 + 15] = static_cast<char>(250);  // marker, length, class/id, 16th count
     expect_memory_error(jpeg, "Huffman table of");
+
+    // a scan that names a Huffman table no DHT defined (stb decodes with a zeroed table and
+    // shifts past 31 bits): the first component's AC table id set to 3
+    std::string scan = jpeg_bytes(16, 16, random_bytes(16 * 16 * 3, 11));
+    const size_t sos = scan.find("\xff\xda");
+    ASSERT_NE(sos, std::string::npos);
+    scan[sos + 6] = static_cast<char>((static_cast<uint8_t>(scan[sos + 6]) & 0xf0) | 3);
+    expect_memory_error(scan, "Huffman table that was not defined");
+    // the same file with the DC table id changed instead
+    scan = jpeg_bytes(16, 16, random_bytes(16 * 16 * 3, 11));
+    scan[sos + 6] = static_cast<char>((static_cast<uint8_t>(scan[sos + 6]) & 0x0f) | 0x20);
+    expect_memory_error(scan, "Huffman table that was not defined");
 }
 
 TEST(LoadTexture, RejectsTruncatedAndCorruptHdrsWithoutHanging) {
