@@ -1,9 +1,25 @@
-// app: the `raylane` command line (CLI11). Input errors print one line and exit with code 2.
+// app: the `raylane` command line (CLI11). Input errors print one line and exit with code 2;
+// Ctrl-C (SIGINT) or SIGTERM stops the render at the next tile and exits with 130 (143) without
+// writing any output (a second Ctrl-C kills at once).
+#include <csignal>
 #include <cstdio>
 #include <exception>
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "render/tiles.h"
+
+namespace {
+
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void on_stop_signal(int sig) {
+    stop_signal = sig;
+    raylane::request_cancel();
+    std::signal(sig, SIG_DFL);  // the next one terminates
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Raylane: a data-oriented SIMD packet ray tracer"};
@@ -14,6 +30,8 @@ int main(int argc, char** argv) {
     raylane::add_info_command(app, exit_code);
     raylane::add_compare_command(app, exit_code);
     raylane::add_report_command(app, exit_code);
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -26,6 +44,9 @@ int main(int argc, char** argv) {
     } catch (const raylane::InputError& e) {
         std::fprintf(stderr, "raylane: %s\n", e.what());
         return 2;
+    } catch (const raylane::Cancelled&) {
+        std::fprintf(stderr, "raylane: interrupted; nothing written\n");
+        return 128 + (stop_signal != 0 ? static_cast<int>(stop_signal) : SIGINT);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "raylane: error: %s\n", e.what());
         return 1;

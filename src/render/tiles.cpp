@@ -21,6 +21,14 @@ std::vector<Tile> make_tiles(int width, int height, int tile_size) {
     return tiles;
 }
 
+namespace {
+std::atomic<bool> cancel_flag{false};
+static_assert(std::atomic<bool>::is_always_lock_free);  // safe to store from a signal handler
+}  // namespace
+
+void request_cancel() { cancel_flag.store(true, std::memory_order_relaxed); }
+bool cancel_requested() { return cancel_flag.load(std::memory_order_relaxed); }
+
 void enable_flush_to_zero() { _mm_setcsr(_mm_getcsr() | 0x8040u); }  // FTZ | DAZ
 
 void Progress::step() {

@@ -6,6 +6,8 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
+#include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 namespace raylane {
@@ -33,8 +35,20 @@ struct Progress {
     void finish();
 };
 
+/// Thrown by for_each_tile when a cancel was requested: the render is incomplete.
+struct Cancelled : std::runtime_error {
+    Cancelled() : std::runtime_error("interrupted") {}
+};
+
+/// Asks every running and later for_each_tile to stop: tiles not yet started are skipped and
+/// for_each_tile throws Cancelled. Async-signal-safe (a lock-free atomic store): the command
+/// line calls it from its SIGINT / SIGTERM handler.
+void request_cancel();
+bool cancel_requested();
+
 /// Runs body(tile) for every tile on `threads` threads (0 = all). Each tile runs on one thread;
-/// the result must not depend on which thread or in what order.
+/// the result must not depend on which thread or in what order. Throws Cancelled if a cancel
+/// was requested before it returned.
 template <class Body>
 void for_each_tile(const std::vector<Tile>& tiles, int threads, Progress& progress, Body&& body) {
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
@@ -43,11 +57,16 @@ void for_each_tile(const std::vector<Tile>& tiles, int threads, Progress& progre
                           [&](const tbb::blocked_range<size_t>& range) {
                               enable_flush_to_zero();
                               for (size_t i = range.begin(); i != range.end(); ++i) {
+                                  if (cancel_requested()) return;
                                   body(tiles[i]);
                                   progress.step();
                               }
                           });
     });
+    if (cancel_requested()) {
+        if (progress.enabled) std::fputc('\n', stderr);
+        throw Cancelled();
+    }
     progress.finish();
 }
 

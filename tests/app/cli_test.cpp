@@ -1,5 +1,6 @@
 // Tests of the `raylane` command line: exit codes, one-line errors, outputs.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -151,6 +152,35 @@ TEST(Cli, StrictRenderFailsOnInfiniteSamplesButWritesACleanImage) {
     }
     // a clean scene passes --strict
     EXPECT_EQ(run("render --width 32 -q --strict -o " + pfm).code, 0);
+}
+
+TEST(Cli, InterruptedRenderWritesNothingAndLeavesTheOldImage) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("raylane_cli_int_" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string png = (dir / "image.png").string();
+    std::ofstream(png) << "the previous image";
+    for (int sig : {SIGINT, SIGTERM}) {
+        const pid_t pid = fork();
+        ASSERT_GE(pid, 0);
+        if (pid == 0) {  // a render of many seconds
+            execl(RAYLANE_BINARY, RAYLANE_BINARY, "render", "--width", "1600", "--spp", "4096",
+                  "-q", "-o", png.c_str(), static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        usleep(700 * 1000);  // into the render (loading the built-in scene takes milliseconds)
+        kill(pid, sig);
+        int status = 0;
+        ASSERT_EQ(waitpid(pid, &status, 0), pid);
+        ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+        EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+        std::ifstream f(png);
+        EXPECT_EQ(std::string(std::istreambuf_iterator<char>(f), {}), "the previous image");
+        size_t files = 0;  // no temporary left beside it
+        for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
+        EXPECT_EQ(files, 1u);
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, InfoPrintsBvhStatistics) {
