@@ -342,7 +342,8 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 rays[p].t_max = select(active[p], rays[p].t_max, vfloat<W>(-1.0f));
             }
             if (params.aov == Aov::color) {
-                // camera rays into the queue, then passes until every path has ended
+                // without secondary rays: shaded in registers; with them: camera rays into the
+                // queue, then passes until every path has ended
                 std::fill(b.acc_r, b.acc_r + max_block_rays, 0.0f);
                 std::fill(b.acc_g, b.acc_g + max_block_rays, 0.0f);
                 std::fill(b.acc_b, b.acc_b + max_block_rays, 0.0f);
