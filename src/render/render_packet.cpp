@@ -227,54 +227,6 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
     }
 }
 
-/// One sample of colour for a tile whose scene has no secondary rays (no mirrors, glass or glossy
-/// lobes): the camera rays are traced as a block and shaded where they are, in registers - no
-/// path queue, no sort - each packet once per distinct material among its hits. Shadow rays still
-/// go to the per-light queues, traced as blocks. Adds to the same slots in the same order as
-/// shade_tile_sample, so the image is the same, bit for bit.
-template <int W, uint32_t F>
-void shade_tile_direct(const Scene& scene, const Accel& accel, const ShadeParams& params,
-                       int32_t sample, uint32_t seed, const RayPacket<W>* rays,
-                       const vmask<W>* active, const vint<W>* slot, const vint<W>* pixel, int count,
-                       TileBuffers& b, ShadeCounts& counts) {
-    static_assert((F & (feature_reflection | feature_refraction | feature_glossy)) == 0);
-    constexpr int max_packets = max_block_rays / W;
-    if (b.shadows.size() < scene.lights.size()) b.shadows.resize(scene.lights.size());
-    HitPacket<W> hits[max_packets];
-    intersect_closest_block(scene, accel, rays, active, hits, count);
-    const ShadeTarget target{b.acc_r, b.acc_g, b.acc_b, b.shadows.data(), nullptr, &counts};
-    for (int p = 0; p < count; ++p) {
-        const vmask<W> hit = mask_and(active[p], gt(hits[p].prim, vint<W>(-1)));
-        const vmask<W> miss = mask_andnot(active[p], hit);
-        if (any(miss)) {
-            const Vec3<W> l = miss_radiance<W>(scene, vint<W>(-1), rays[p].dir, miss);
-            shade_detail::accumulate<W>(target, slot[p], l, miss);
-        }
-        if (none(hit)) continue;
-        // each lane's material; one shade_hits call per distinct material (usually one)
-        alignas(64) int32_t material[W > 1 ? W : 1];
-        for_each_active(hit, [&](int i) {
-            material[i] =
-                static_cast<int32_t>(scene.objects[size_t(get(hits[p].object, i))].material);
-        });
-        const ShadeInput<W> in = camera_shade_input<W>(rays[p], hits[p], slot[p], pixel[p]);
-        vmask<W> todo = hit;
-        while (any(todo)) {
-            const int32_t m = material[first_active(todo)];
-            uint32_t bits = 0;
-            for_each_active(todo, [&](int i) { bits |= uint32_t{material[i] == m} << i; });
-            const vmask<W> same = mask_from_bits<W>(bits);
-            shade_hits<W, F>(scene, scene.materials[size_t(m)], params, sample, seed, in, same,
-                             target);
-            todo = mask_andnot(todo, same);
-        }
-    }
-    for (size_t j = 0; j < scene.lights.size(); ++j) {
-        trace_shadows<W>(scene, accel, b.shadows[j], b);
-        b.shadows[j].clear();
-    }
-}
-
 template <int W, uint32_t F>
 RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                                     const RenderParams& params) {
@@ -342,25 +294,18 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 rays[p].t_max = select(active[p], rays[p].t_max, vfloat<W>(-1.0f));
             }
             if (params.aov == Aov::color) {
-                // without secondary rays: shaded in registers; with them: camera rays into the
-                // queue, then passes until every path has ended
+                // camera rays into the queue, then passes until every path has ended
+                b.paths.clear();
                 std::fill(b.acc_r, b.acc_r + max_block_rays, 0.0f);
                 std::fill(b.acc_g, b.acc_g + max_block_rays, 0.0f);
                 std::fill(b.acc_b, b.acc_b + max_block_rays, 0.0f);
-                if constexpr ((F & (feature_reflection | feature_refraction | feature_glossy)) ==
-                              0) {
-                    shade_tile_direct<W, F>(scene, accel, shade, s, params.seed, rays, active, slot,
-                                            pixel, count, b, counts);
-                } else {
-                    b.paths.clear();
-                    const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
-                    const vint<W> zero(0), none(-1);
-                    for (int p = 0; p < count; ++p) {
-                        push_packet<W>(b.paths, rays[p].org, rays[p].dir, one, one, slot[p], zero,
-                                       zero, zero, none, zero, active[p]);
-                    }
-                    shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
+                const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
+                const vint<W> zero(0), none(-1);
+                for (int p = 0; p < count; ++p) {
+                    push_packet<W>(b.paths, rays[p].org, rays[p].dir, one, one, slot[p], zero, zero,
+                                   zero, none, zero, active[p]);
                 }
+                shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
                 for (int p = 0; p < count; ++p) {
                     value[p].x = gather(b.acc_r, slot[p], active[p]);
                     value[p].y = gather(b.acc_g, slot[p], active[p]);
@@ -404,6 +349,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     return result;
 }
 
+#ifndef RAYLANE_SANITIZED
 /// The kernel feature set for a scene: groups of features, so 16 kernels cover every scene.
 uint32_t kernel_features(uint32_t scene) {
     uint32_t f = 0;
@@ -418,7 +364,6 @@ uint32_t kernel_features(uint32_t scene) {
 constexpr uint32_t group_secondary = feature_reflection | feature_refraction | feature_glossy;
 constexpr uint32_t group_camera = feature_environment | feature_lens;
 
-#ifndef RAYLANE_SANITIZED
 /// Calls the kernel compiled for exactly the feature groups in f.
 template <int W>
 RenderResult dispatch(uint32_t f, const Scene& scene, const Accel& accel,
@@ -457,20 +402,14 @@ RenderResult dispatch(uint32_t f, const Scene& scene, const Accel& accel,
 template <int W>
 RenderResult render_packet_width(const Scene& scene, const Accel& accel,
                                  const RenderParams& params) {
-    const uint32_t f = kernel_features(scene_features(scene));
-    if (params.generic_kernel)
-        return render_packet_features<W, kernel_features_all>(scene, accel, params);
-    // the direct kernel (no secondary rays, no textures, point lights) at every width and in
-    // every build; the other specialised kernels at the native width outside sanitizer builds
-    // (16 kernels take too long to build there; the release tests check that every specialised
-    // kernel gives the generic kernel's image)
-    if (f == 0) return render_packet_features<W, 0>(scene, accel, params);
 #ifdef RAYLANE_SANITIZED
+    // sanitizer builds compile the generic kernel only (16 kernels take too long to build there;
+    // the release tests check that every specialised kernel gives the generic kernel's image)
     return render_packet_features<W, kernel_features_all>(scene, accel, params);
 #else
-    if (W != native_width)
+    if (params.generic_kernel || W != native_width)
         return render_packet_features<W, kernel_features_all>(scene, accel, params);
-    return dispatch<W>(f, scene, accel, params);
+    return dispatch<W>(kernel_features(scene_features(scene)), scene, accel, params);
 #endif
 }
 

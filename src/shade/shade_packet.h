@@ -131,24 +131,6 @@ struct ShadeInput {
     vmask<W> local_only;
 };
 
-/// Camera rays and their hits as shading input: weight 1, depth 0, the scene's environment.
-template <int W>
-inline ShadeInput<W> camera_shade_input(const RayPacket<W>& rays, const HitPacket<W>& hits,
-                                        const vint<W>& slot, const vint<W>& pixel) {
-    ShadeInput<W> in;
-    in.rays = rays;
-    in.hits = hits;
-    in.weight = make_vec3<W>(1.0f, 1.0f, 1.0f);
-    in.slot = slot;
-    in.key = vint<W>(0);
-    in.refl_depth = vint<W>(0);
-    in.refr_depth = vint<W>(0);
-    in.env = vint<W>(-1);
-    in.pixel = pixel;
-    in.local_only = vmask<W>(false);
-    return in;
-}
-
 /// Queue entries idx[0..k) of `q` with their hits `h` as shading input (gathers); `pixel_of_slot`
 /// maps a tile slot to the image pixel index. Lanes from k on are inactive.
 template <int W>
