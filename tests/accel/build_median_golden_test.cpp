@@ -1,0 +1,210 @@
+// Golden tests of accel/build_median.cpp: the optimised median-split build must give the tree of
+// the plain nth_element build in median_reference.h bit for bit (nodes and primitive order), and
+// the SHA-256 recorded from the build before its optimisation (issue #2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+
+#include "accel/bvh.h"
+#include "accel/median_reference.h"
+#include "accel/sha256.h"
+#include "core/rng.h"
+#include "io/load_mesh.h"
+
+namespace raylane {
+namespace {
+
+std::string digest(const Bvh& bvh) {
+    test::Sha256 h;
+    h.update(bvh.nodes.data(), bvh.nodes.size() * sizeof(BvhNode));
+    h.update(bvh.prim_ids.data(), bvh.prim_ids.size() * sizeof(uint32_t));
+    return h.hex();
+}
+
+std::string digest(std::span<const Aabb> boxes) {
+    test::Sha256 h;
+    for (const Aabb& b : boxes) {
+        const float f[6] = {b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z};
+        h.update(f, sizeof f);
+    }
+    return h.hex();
+}
+
+/// Index of the first node that differs (bytes), or of the first prim_ids entry, as text.
+std::string first_difference(const Bvh& got, const Bvh& want) {
+    if (got.nodes.size() != want.nodes.size())
+        return "node count " + std::to_string(got.nodes.size()) + " vs " +
+               std::to_string(want.nodes.size());
+    for (size_t i = 0; i < got.nodes.size(); ++i)
+        if (std::memcmp(&got.nodes[i], &want.nodes[i], sizeof(BvhNode)) != 0)
+            return "node " + std::to_string(i);
+    if (got.prim_ids != want.prim_ids) return "prim_ids";
+    return "";
+}
+
+/// Uniform float in [lo, hi) from the counter-based hash (the same on every platform).
+float uniform(uint32_t i, uint32_t dim, uint32_t seed, float lo, float hi) {
+    return lo + (hi - lo) * random_float(i, 0, dim, seed);
+}
+
+/// Triangle-like boxes: small boxes scattered in a [-10, 10]^3 cube.
+std::vector<Aabb> random_boxes(size_t n, uint32_t seed) {
+    std::vector<Aabb> boxes(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        vec3 lo, size;
+        for (uint32_t k = 0; k < 3; ++k) {
+            lo[int(k)] = uniform(i, k, seed, -10.0f, 10.0f);
+            size[int(k)] = uniform(i, 3 + k, seed, 0.0f, 0.05f);
+        }
+        boxes[i] = {lo, lo + size};
+    }
+    return boxes;
+}
+
+/// Boxes on a coarse grid, many with equal centroids, and points at -0 and +0 (equal as
+/// floats, ordered -0 first by the tie rule).
+std::vector<Aabb> tied_boxes(size_t n, uint32_t seed) {
+    std::vector<Aabb> boxes(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        vec3 lo, hi;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t r = hash_sample(i, 1, k, seed);
+            const float v = float(int(r % 5u) - 2);  // -2 .. 2
+            if (v == 0.0f) {
+                // a point at a signed zero: c2 = -0 + -0 = -0 or +0 + +0 = +0
+                lo[int(k)] = hi[int(k)] = (r & 0x100u) ? -0.0f : 0.0f;
+            } else {
+                lo[int(k)] = v;
+                hi[int(k)] = v + float((r >> 9) % 2u);
+            }
+        }
+        boxes[i] = {lo, hi};
+    }
+    return boxes;
+}
+
+void expect_same_as_reference(std::span<const Aabb> boxes, int leaf, const std::string& what) {
+    const Bvh got = build_bvh_median(boxes, BuildParams{leaf});
+    const Bvh want = test::MedianReference::build(boxes, leaf);
+    EXPECT_EQ(first_difference(got, want), "") << what << " leaf=" << leaf;
+    EXPECT_EQ(check_bvh(got, boxes, leaf), "") << what << " leaf=" << leaf;
+}
+
+TEST(Sha256, MatchesTheFips180Examples) {
+    auto hex = [](const std::string& s) {
+        test::Sha256 h;
+        h.update(s.data(), s.size());
+        return h.hex();
+    };
+    EXPECT_EQ(hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+    EXPECT_EQ(hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+    EXPECT_EQ(hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+              "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+}
+
+TEST(MedianReference, SatisfiesTheBvhInvariants) {
+    const std::vector<Aabb> boxes = random_boxes(3000, 4);
+    for (int leaf : {1, 4, 7}) {
+        const Bvh bvh = test::MedianReference::build(boxes, leaf);
+        EXPECT_EQ(check_bvh(bvh, boxes, leaf), "") << "leaf=" << leaf;
+    }
+}
+
+TEST(BuildMedianGolden, DragonTreeIsTheReferenceTreeAndTheRecordedOne) {
+    const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/dragon.ply";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+    const Mesh mesh = load_mesh(path);
+    std::vector<Aabb> bounds(mesh.tris.size());
+    for (size_t i = 0; i < mesh.tris.size(); ++i)
+        for (uint32_t v : {mesh.tris[i].x, mesh.tris[i].y, mesh.tris[i].z})
+            bounds[i].grow(mesh.positions[v]);
+    // Recorded from the build of commit a09c016 (before the optimisation of issue #2).
+    ASSERT_EQ(digest(bounds), "c40400b0e1632acf4a1b5304c3cc41c9261dd85036bbf4292f8b3e30f14608ae")
+        << "the dragon's triangle boxes changed (loader or model): re-record both digests";
+
+    const MeshAccel accel = build_mesh_accel(mesh, BuildParams{});
+    const Bvh want = test::MedianReference::build(bounds, 4);
+    EXPECT_EQ(first_difference(accel.bvh, want), "");
+    EXPECT_EQ(digest(accel.bvh),
+              "9a22534898584c42665f4c9bf4f4218d7444aa8eeec54016f3df97d7f65699e9");
+    ASSERT_EQ(accel.verts.size(), mesh.tris.size());
+    for (size_t k = 0; k < accel.verts.size(); ++k) {
+        const uvec3 t = mesh.tris[accel.bvh.prim_ids[k]];
+        ASSERT_EQ(accel.verts[k].a, mesh.positions[t.x]) << k;
+        ASSERT_EQ(accel.verts[k].b, mesh.positions[t.y]) << k;
+        ASSERT_EQ(accel.verts[k].c, mesh.positions[t.z]) << k;
+    }
+}
+
+TEST(BuildMedianGolden, RandomBoxesGiveTheReferenceTreeAndTheRecordedOne) {
+#ifdef RAYLANE_SANITIZED
+    const size_t n = 20000;
+#else
+    const size_t n = 300000;
+#endif
+    const std::vector<Aabb> boxes = random_boxes(n, 2);
+    const Bvh got = build_bvh_median(boxes, BuildParams{});
+    EXPECT_EQ(first_difference(got, test::MedianReference::build(boxes, 4)), "");
+    if (n == 300000) {
+        // Recorded from the build of commit a09c016 (before the optimisation of issue #2).
+        ASSERT_EQ(digest(boxes),
+                  "0f1d9a55db43458c2fc94497cb4eefcf3435bb55fd7ee4c8708e9cfbafc45417");
+        EXPECT_EQ(digest(got), "1c7442c40a04d837c14384d58523a78c0a726547a54507491409df3e1009e726");
+    }
+}
+
+TEST(BuildMedianGolden, EverySmallSizeAndLeafSizeGivesTheReferenceTree) {
+    for (int leaf : {1, 2, 3, 4, 5, 8, 65535, 70000})
+        for (size_t n = 1; n <= 70; ++n) {
+            const std::vector<Aabb> boxes = random_boxes(n, uint32_t(n));
+            expect_same_as_reference(boxes, leaf, "random n=" + std::to_string(n));
+            const std::vector<Aabb> ties = tied_boxes(n, uint32_t(n));
+            expect_same_as_reference(ties, leaf, "tied n=" + std::to_string(n));
+        }
+}
+
+TEST(BuildMedianGolden, TiedCentroidsGiveTheReferenceTree) {
+    // below and above 2^16 primitives (the radix sort's digit width changes there)
+    for (size_t n : {1000u, 4096u, 4097u, 50000u, 70000u})
+        for (int leaf : {1, 4, 6}) {
+            const std::vector<Aabb> ties = tied_boxes(n, 11);
+            expect_same_as_reference(ties, leaf, "tied n=" + std::to_string(n));
+        }
+}
+
+TEST(BuildMedianGolden, EqualCentroidsKeepIndexOrder) {
+    // all centroids equal: every split takes the lower indices first, leaves list them in order
+    for (size_t n : {1000u, 70000u}) {
+        const std::vector<Aabb> boxes(n, Aabb{vec3(-1.0f), vec3(1.0f)});
+        const Bvh bvh = build_bvh_median(boxes, BuildParams{4});
+        for (uint32_t i = 0; i < boxes.size(); ++i) ASSERT_EQ(bvh.prim_ids[i], i) << "n=" << n;
+        EXPECT_EQ(first_difference(bvh, test::MedianReference::build(boxes, 4)), "") << n;
+    }
+}
+
+TEST(BuildMedianGolden, NegativeZeroCentroidSortsBeforePositiveZero) {
+    // primitive 0 at +0, primitive 1 at -0 on every axis: equal floats, but -0 goes first
+    const Aabb plus{vec3(0.0f), vec3(0.0f)}, minus{vec3(-0.0f), vec3(-0.0f)};
+    const std::vector<Aabb> boxes = {plus, minus};
+    const Bvh bvh = build_bvh_median(boxes, BuildParams{1});
+    ASSERT_EQ(bvh.nodes.size(), 3u);
+    EXPECT_EQ(bvh.prim_ids, (std::vector<uint32_t>{1, 0}));
+    // the root keeps the first -0 it meets in leaf order
+    EXPECT_TRUE(std::signbit(bvh.nodes[0].lo[0]));
+    EXPECT_TRUE(std::signbit(bvh.nodes[0].hi[0]));
+}
+
+TEST(BuildMedianGolden, LargeAndSmallMagnitudesAndInfinitiesGiveTheReferenceTree) {
+    std::vector<Aabb> boxes = random_boxes(5000, 8);
+    const float big = std::numeric_limits<float>::max();
+    for (size_t i = 0; i < boxes.size(); i += 7) boxes[i].lo.y = -big, boxes[i].hi.y = -big;
+    for (size_t i = 3; i < boxes.size(); i += 11) boxes[i].hi.z = infinity;
+    for (size_t i = 5; i < boxes.size(); i += 13) boxes[i].lo.x = boxes[i].hi.x = 1e-40f;
+    for (int leaf : {1, 4}) expect_same_as_reference(boxes, leaf, "extremes");
+}
+
+}  // namespace
+}  // namespace raylane
