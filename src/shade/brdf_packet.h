@@ -372,7 +372,8 @@ inline vfloat<W> fresnel_dielectric(const vfloat<W>& cos_i, const vfloat<W>& eta
     const vfloat<W> ci = min(max(cos_i, zero), one);
     const vfloat<W> cos2_t = brdf_detail::transmitted_cos2<W>(ci, eta);
     const vfloat<W> cos_t = select(eta == one, ci, sqrt(max(cos2_t, zero)));
-    return select(cos2_t > zero, fresnel_dielectric<W>(ci, eta, cos_t), one);
+    // index-matched (eta 1): no interface, R = 0 even where 1 - cos^2 rounds to 1
+    return select(mask_or(cos2_t > zero, eta == one), fresnel_dielectric<W>(ci, eta, cos_t), one);
 }
 
 template <int W>

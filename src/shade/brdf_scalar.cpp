@@ -252,7 +252,8 @@ float fresnel_dielectric(float cos_i, float eta) {
     const float ci = min_of(max_of(cos_i, 0.0f), 1.0f);
     const float cos2_t = transmitted_cos2(ci, eta);
     const float cos_t = eta == 1.0f ? ci : std::sqrt(max_of(cos2_t, 0.0f));
-    return cos2_t > 0.0f ? fresnel_dielectric(ci, eta, cos_t) : 1.0f;
+    // index-matched (eta 1): no interface, R = 0 even where 1 - cos^2 rounds to 1
+    return cos2_t > 0.0f || eta == 1.0f ? fresnel_dielectric(ci, eta, cos_t) : 1.0f;
 }
 
 bool refract_direction(vec3 d, vec3 n_facing, float eta, vec3& t, float& cos_t) {

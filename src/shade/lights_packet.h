@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "shade/lights_scalar.h"
@@ -93,11 +94,14 @@ inline LightSamplePacket<W> sample_light(const Light& light, const Vec3<W>& orig
     }
     const Vec3<W> to = p - origin;
     const vfloat<W> d2 = dot(to, to);
-    ls.valid = d2 > vfloat<W>(0.0f);
+    const vfloat<W> factor = vfloat<W>(light.intensity) / d2;
+    // on the light (d = 0), or so close that intensity / d^2 overflows: no usable sample
+    ls.valid =
+        mask_and(d2 > vfloat<W>(0.0f), factor < vfloat<W>(std::numeric_limits<float>::infinity()));
     const vfloat<W> d = sqrt(d2);
     ls.dir = to / d;
     ls.distance = d;
-    ls.factor = vfloat<W>(light.intensity) / d2;
+    ls.factor = factor;
     return ls;
 }
 

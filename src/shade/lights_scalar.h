@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/ray.h"
@@ -100,11 +101,13 @@ inline LightSample sample_light(const Light& light, vec3 origin, int i, int n, f
                        : area_light_point(light, stratified_square(i, n, u1, u2), u3);
     const vec3 to = p - origin;
     const float d2 = glm::dot(to, to);
-    if (!(d2 > 0.0f)) return ls;
+    const float factor = light.intensity / d2;
+    // on the light (d = 0), or so close that intensity / d^2 overflows: no usable sample
+    if (!(d2 > 0.0f) || !(factor < std::numeric_limits<float>::infinity())) return ls;
     const float d = std::sqrt(d2);
     ls.dir = to / d;
     ls.distance = d;
-    ls.factor = light.intensity / d2;
+    ls.factor = factor;
     ls.valid = true;
     return ls;
 }

@@ -254,12 +254,16 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
             const vmask<W> reflects = mask_and(alive, r > zero);
             if (o.override_reflected) {
                 accumulate<W>(out, slot, (weight * r) * bc<W>(o.reflected_color), reflects);
-            } else if (o.reflection && any(reflects)) {
-                out.counts->reflection_rays += uint64_t(count(reflects));
-                push_packet<W>(*out.next, org_out, reflected_dir, weight * r,
-                               select(entering, bc<W>(no_filter), bc<W>(m.filter)), slot,
-                               child_keys<W>(key, purpose_reflect, 0), refl_depth,
-                               refr_depth + vint<W>(1), child_env, vint<W>(0), reflects);
+            } else if (o.reflection) {
+                // below the geometric surface: discarded
+                const vmask<W> traced = mask_and(reflects, dot(ng, reflected_dir) > zero);
+                if (any(traced)) {
+                    out.counts->reflection_rays += uint64_t(count(traced));
+                    push_packet<W>(*out.next, org_out, reflected_dir, weight * r,
+                                   select(entering, bc<W>(no_filter), bc<W>(m.filter)), slot,
+                                   child_keys<W>(key, purpose_reflect, 0), refl_depth,
+                                   refr_depth + vint<W>(1), child_env, vint<W>(0), traced);
+                }
             }
             const vmask<W> transmits = mask_and(mask_and(alive, refracts), r < one);
             if (o.refraction && any(transmits)) {
@@ -291,10 +295,12 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
                     accumulate<W>(out, slot, mirror_weight * bc<W>(o.reflected_color), mirror);
                 } else if (o.reflection) {
                     const Vec3<W> dir = reflect_direction<W>(view, ns);
-                    out.counts->reflection_rays += uint64_t(count(mirror));
+                    // a reflection about a mapped n_s below the geometric surface is discarded
+                    const vmask<W> traced = mask_and(mirror, dot(ng, dir) > zero);
+                    out.counts->reflection_rays += uint64_t(count(traced));
                     push_packet<W>(*out.next, origin, dir, mirror_weight, bc<W>(vec3(1.0f)), slot,
                                    child_keys<W>(key, purpose_mirror, 0), refl_depth + vint<W>(1),
-                                   refr_depth, child_env, vint<W>(0), mirror);
+                                   refr_depth, child_env, vint<W>(0), traced);
                 }
             }
         }

@@ -114,14 +114,15 @@ vec3 mirror_term(const Scene& scene, const Accel& accel, const Material& m, cons
     const ShadingOptions& o = scene.shading;
     const float cos_theta = -glm::dot(p.view, p.ns);
     const float r = m.fresnel && o.fresnel ? schlick(m.reflection, cos_theta) : m.reflection;
+    const vec3 dir = reflect_direction(p.view, p.ns);
     vec3 mirrored(0.0f);
     if (o.override_reflected) {
         mirrored = o.reflected_color;
-    } else if (o.reflection) {
+    } else if (o.reflection && glm::dot(p.ng, dir) > 0.0f) {
+        // a reflection about a mapped n_s that points below the geometric surface is discarded
         ++counts.reflection_rays;
         PathRay child;
-        child.ray = Ray{offset_ray_origin(p.position, p.ng), reflect_direction(p.view, p.ns), 0.0f,
-                        infinity};
+        child.ray = Ray{offset_ray_origin(p.position, p.ng), dir, 0.0f, infinity};
         child.key = child_key(path.key, purpose_mirror, 0);
         child.reflection_depth = path.reflection_depth + 1;
         child.refraction_depth = path.refraction_depth;
@@ -161,10 +162,13 @@ vec3 glass_term(const Scene& scene, const Accel& accel, const Material& m, const
     if (r > 0.0f && (o.reflection || o.override_reflected)) {
         vec3 reflected = o.reflected_color;
         if (!o.override_reflected) {
-            ++counts.reflection_rays;
-            // a reflection inside the glass travels inside
-            reflected =
-                trace_child(p.ng, reflect_direction(p.view, p.ns), purpose_reflect, !p.entering);
+            const vec3 dir = reflect_direction(p.view, p.ns);
+            reflected = vec3(0.0f);  // below the geometric surface: discarded
+            if (glm::dot(p.ng, dir) > 0.0f) {
+                ++counts.reflection_rays;
+                // a reflection inside the glass travels inside
+                reflected = trace_child(p.ng, dir, purpose_reflect, !p.entering);
+            }
         }
         color += r * reflected;
     }

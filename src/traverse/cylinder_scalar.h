@@ -20,48 +20,50 @@ namespace raylane {
 /// (x^2 + z^2 <= r^2). The two decisions at a rim then compare the same rounded numbers, so a
 /// ray the intervals say crosses the solid is always accepted by one of them: no leak at the
 /// rims (numerics.md §5). Side roots as for spheres (Haines, Guenther, Akenine-Moeller, Ray
-/// Tracing Gems ch. 7, 2019), in the xz plane.
-inline float intersect_cylinder(const Cylinder& cyl, const Ray& ray) {
-    const vec3 o = ray.org;
-    const vec3 d = ray.dir;
-    const float r2 = cyl.radius * cyl.radius;
+/// Tracing Gems ch. 7, 2019), in the xz plane. T is the real type the arithmetic runs in.
+template <typename T>
+inline T intersect_cylinder(const Cylinder& cyl, const RayOf<T>& ray) {
+    const Vec3Of<T> o = ray.org;
+    const Vec3Of<T> d = ray.dir;
+    const T r2 = static_cast<T>(cyl.radius) * static_cast<T>(cyl.radius);
+    const T inf = infinity_of<T>;
 
     // side: the infinite cylinder as the interval [s_lo, s_hi] of t (a t^2 + 2 b t + c = 0)
-    const float a = d.x * d.x + d.z * d.z;
-    const float b = o.x * d.x + o.z * d.z;
-    const float c = o.x * o.x + o.z * o.z - r2;
-    float s_lo = -infinity;
-    float s_hi = infinity;
-    if (a > 0.0f) {
+    const T a = d.x * d.x + d.z * d.z;
+    const T b = o.x * d.x + o.z * d.z;
+    const T c = o.x * o.x + o.z * o.z - r2;
+    T s_lo = -inf;
+    T s_hi = inf;
+    if (a > T(0)) {
         // discriminant from the perpendicular offset of the axis: b^2 - a c = a (r^2 - |l|^2)
-        const float lx = o.x - (b / a) * d.x;
-        const float lz = o.z - (b / a) * d.z;
-        const float disc = a * (r2 - (lx * lx + lz * lz));
-        if (!(disc >= 0.0f)) return infinity;
-        const float q = -(b + std::copysign(std::sqrt(disc), b));
-        const float t0 = c / q;
-        const float t1 = q / a;
+        const T lx = o.x - (b / a) * d.x;
+        const T lz = o.z - (b / a) * d.z;
+        const T disc = a * (r2 - (lx * lx + lz * lz));
+        if (!(disc >= T(0))) return inf;
+        const T q = -(b + std::copysign(std::sqrt(disc), b));
+        const T t0 = c / q;
+        const T t1 = q / a;
         s_lo = t0 < t1 ? t0 : t1;
         s_hi = t0 < t1 ? t1 : t0;
-    } else if (!(c <= 0.0f)) {
-        return infinity;  // parallel to the axis (or NaN), outside the closed disc
+    } else if (!(c <= T(0))) {
+        return inf;  // parallel to the axis (or NaN), outside the closed disc
     }
 
     // caps: the slab 0 <= y <= h as the interval [y_lo, y_hi] of t, near/far by the sign bit of
     // dy. A NaN distance for one plane (0 / 0, the ray lies in that cap plane) leaves that end
     // open; for both (a NaN input, or height 0) the cylinder is missed
-    const float t_bottom = (0.0f - o.y) / d.y;
-    const float t_top = (cyl.height - o.y) / d.y;
-    if (!(t_bottom == t_bottom || t_top == t_top)) return infinity;
+    const T t_bottom = (T(0) - o.y) / d.y;
+    const T t_top = (static_cast<T>(cyl.height) - o.y) / d.y;
+    if (!(t_bottom == t_bottom || t_top == t_top)) return inf;
     const bool down = std::signbit(d.y);
-    const float y_near = down ? t_top : t_bottom;
-    const float y_far = down ? t_bottom : t_top;
-    const float y_lo = y_near > -infinity ? y_near : -infinity;
-    const float y_hi = y_far < infinity ? y_far : infinity;
+    const T y_near = down ? t_top : t_bottom;
+    const T y_far = down ? t_bottom : t_top;
+    const T y_lo = y_near > -inf ? y_near : -inf;
+    const T y_hi = y_far < inf ? y_far : inf;
 
     // accept: smallest candidate in (t_min, t_max) lying in the other interval (closed)
-    float t = infinity;
-    if (a > 0.0f) {
+    T t = inf;
+    if (a > T(0)) {
         if (s_lo >= y_lo && s_lo <= y_hi && s_lo > ray.t_min && s_lo < ray.t_max && s_lo < t)
             t = s_lo;
         if (s_hi >= y_lo && s_hi <= y_hi && s_hi > ray.t_min && s_hi < ray.t_max && s_hi < t)
@@ -72,27 +74,35 @@ inline float intersect_cylinder(const Cylinder& cyl, const Ray& ray) {
     return t;
 }
 
+/// The renderer's test: intersect_cylinder in float.
+inline float intersect_cylinder(const Cylinder& cyl, const Ray& ray) {
+    return intersect_cylinder<float>(cyl, ray_of<float>(ray));
+}
+
 /// Normal and uv at an object-space point p on the cylinder. The part is the one nearest to p
 /// (side, bottom cap, top cap; ties go in that order). Side: normal (x, 0, z) / |(x, z)|,
 /// uv = (phi / 2 pi, y / h). Caps: normal -y or +y, uv = (phi / 2 pi, |(x, z)| / r). phi is the
 /// azimuth around +y from +x towards +z.
-inline LocalGeometry geometry_cylinder(const Cylinder& cyl, vec3 p) {
-    const float rho = std::sqrt(p.x * p.x + p.z * p.z);
-    const float d_side = std::abs(rho - cyl.radius);
-    const float d_bottom = std::abs(p.y);
-    const float d_top = std::abs(p.y - cyl.height);
-    LocalGeometry g;
-    const float u = azimuth_fraction(p.x, p.z);
+template <typename T>
+inline LocalGeometryOf<T> geometry_cylinder(const Cylinder& cyl, Vec3Of<T> p) {
+    const T radius = static_cast<T>(cyl.radius);
+    const T height = static_cast<T>(cyl.height);
+    const T rho = std::sqrt(p.x * p.x + p.z * p.z);
+    const T d_side = std::abs(rho - radius);
+    const T d_bottom = std::abs(p.y);
+    const T d_top = std::abs(p.y - height);
+    LocalGeometryOf<T> g;
+    const T u = azimuth_fraction(p.x, p.z);
     if (d_side <= d_bottom && d_side <= d_top) {
         // side (on the axis only for a zero radius: any horizontal normal will do)
-        g.normal = rho > 0.0f ? vec3(p.x / rho, 0.0f, p.z / rho) : vec3(1.0f, 0.0f, 0.0f);
-        const float v = cyl.height > 0.0f ? p.y / cyl.height : 0.0f;
-        g.uv = vec2(u, std::clamp(v, 0.0f, 1.0f));
+        g.normal = rho > T(0) ? Vec3Of<T>(p.x / rho, T(0), p.z / rho) : Vec3Of<T>(T(1), T(0), T(0));
+        const T v = height > T(0) ? p.y / height : T(0);
+        g.uv = glm::vec<2, T>(u, std::clamp(v, T(0), T(1)));
     } else {
         // caps
-        g.normal = d_bottom <= d_top ? vec3(0.0f, -1.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
-        const float v = cyl.radius > 0.0f ? rho / cyl.radius : 0.0f;
-        g.uv = vec2(u, std::clamp(v, 0.0f, 1.0f));
+        g.normal = d_bottom <= d_top ? Vec3Of<T>(T(0), T(-1), T(0)) : Vec3Of<T>(T(0), T(1), T(0));
+        const T v = radius > T(0) ? rho / radius : T(0);
+        g.uv = glm::vec<2, T>(u, std::clamp(v, T(0), T(1)));
     }
     return g;
 }

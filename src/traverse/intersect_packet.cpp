@@ -15,21 +15,6 @@
 
 namespace raylane {
 
-template <int W>
-vfloat<W> next_float_up(const vfloat<W>& x) {
-    if constexpr (W == 1) {
-        return std::nextafter(x, infinity);
-    } else {
-        // one step up the float bit patterns: +1 above zero, -1 below it (sign-magnitude)
-        const vint<W> b = float_as_int(x);
-        const vfloat<W> up = int_as_float(b + vint<W>(1)), down = int_as_float(b - vint<W>(1));
-        const vfloat<W> zero(0.0f);
-        vfloat<W> out = select(x > zero, up, select(x < zero, down, x));
-        out = select(x == zero, int_as_float(vint<W>(1)), out);  // +-0 -> smallest denormal
-        return select(x == vfloat<W>(infinity), x, out);         // +inf stays, NaN stays
-    }
-}
-
 namespace {
 
 constexpr int stack_size = 64;
@@ -50,12 +35,15 @@ RayPacket<W> to_object_space(const Object& object, const RayPacket<W>& rays) {
     return r;
 }
 
-/// Upper end of the open interval a candidate must beat; ties with the current hit pass.
+/// Upper end of the open interval a node or candidate must beat (intersect_scalar.cpp: t_limit):
+/// tie_ulps above the current hit, so ties and near-ties reach the (t, object, prim) tie-break.
 template <int W>
 vfloat<W> t_limit(const RayPacket<W>& rays, const HitPacket<W>& hit) {
-    const vmask<W> has_hit = hit.t < vfloat<W>(infinity);
+    const vfloat<W> inf(infinity);
+    const vmask<W> has_hit = hit.t < inf;
     if (none(has_hit)) return rays.t_max;
-    return select(has_hit, next_float_up<W>(hit.t), rays.t_max);
+    const vfloat<W> up = int_as_float(float_as_int(abs(hit.t)) + vint<W>(tie_ulps));
+    return select(has_hit, select(up < inf, up, inf), rays.t_max);
 }
 
 /// Lanes of `cand` whose candidate (t, object, prim) beats the current hit. Ties in t are rare
@@ -700,7 +688,6 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
 }
 
 // Instantiations: W = 1 (the packet code at scalar width) and every width this build runs.
-template vfloat<1> next_float_up<1>(const vfloat<1>&);
 template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const RayPacket<1>&,
                                            vmask<1>, vint<1>*);
 template vmask<1> intersect_any<1>(const Scene&, const Accel&, const RayPacket<1>&, vmask<1>);
@@ -711,7 +698,6 @@ template void intersect_any_block<1>(const Scene&, const Accel&, const RayPacket
 template SurfacePacket<1> surface_at<1>(const Scene&, const RayPacket<1>&, const HitPacket<1>&,
                                         vmask<1>);
 #if XSIMD_WITH_SSE2
-template vfloat<4> next_float_up<4>(const vfloat<4>&);
 template HitPacket<4> intersect_closest<4>(const Scene&, const Accel&, const RayPacket<4>&,
                                            vmask<4>, vint<4>*);
 template vmask<4> intersect_any<4>(const Scene&, const Accel&, const RayPacket<4>&, vmask<4>);
@@ -723,7 +709,6 @@ template SurfacePacket<4> surface_at<4>(const Scene&, const RayPacket<4>&, const
                                         vmask<4>);
 #endif
 #if XSIMD_WITH_AVX2
-template vfloat<8> next_float_up<8>(const vfloat<8>&);
 template HitPacket<8> intersect_closest<8>(const Scene&, const Accel&, const RayPacket<8>&,
                                            vmask<8>, vint<8>*);
 template vmask<8> intersect_any<8>(const Scene&, const Accel&, const RayPacket<8>&, vmask<8>);
@@ -735,7 +720,6 @@ template SurfacePacket<8> surface_at<8>(const Scene&, const RayPacket<8>&, const
                                         vmask<8>);
 #endif
 #if XSIMD_WITH_AVX512F
-template vfloat<16> next_float_up<16>(const vfloat<16>&);
 template HitPacket<16> intersect_closest<16>(const Scene&, const Accel&, const RayPacket<16>&,
                                              vmask<16>, vint<16>*);
 template vmask<16> intersect_any<16>(const Scene&, const Accel&, const RayPacket<16>&, vmask<16>);

@@ -55,8 +55,4 @@ template <int W>
 SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
                             vmask<W> active);
 
-/// Smallest float above x, lane-wise (std::nextafter(x, +inf)); +inf stays +inf.
-template <int W>
-vfloat<W> next_float_up(const vfloat<W>& x);
-
 }  // namespace raylane

@@ -1,7 +1,9 @@
 // traverse: scalar two-level BVH traversal. Mirrored by intersect_packet.cpp.
 #include "traverse/intersect_scalar.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "traverse/box_scalar.h"
 #include "traverse/cylinder_scalar.h"
@@ -24,10 +26,14 @@ Ray to_object_space(const Object& object, const Ray& ray) {
     return r;
 }
 
-/// Upper end of the open interval a candidate must beat: ties with the current hit are let
-/// through so the (t, object, prim) tie-break can decide them.
+/// Upper end of the open interval a node or candidate must beat: tie_ulps above the current hit.
+/// A triangle lying in a box face can come out a few ulps below the box's near distance, so one
+/// ulp would cull its node and a coplanar tie would never reach the (t, object, prim) tie-break
+/// (numerics.md section 2); better() still rejects every candidate that is truly farther.
 float t_limit(const Ray& ray, const Hit& hit) {
-    return hit.hit() ? std::nextafter(hit.t, infinity) : ray.t_max;
+    if (!hit.hit()) return ray.t_max;
+    const float up = std::bit_cast<float>(std::bit_cast<int32_t>(std::fabs(hit.t)) + tie_ulps);
+    return up < infinity ? up : infinity;
 }
 
 bool better(float t, uint32_t object, uint32_t prim, const Hit& hit) {

@@ -8,6 +8,10 @@
 
 namespace raylane {
 
+/// How far above the current hit's t (in float steps) nodes and primitives are still tested, so
+/// that ties reach the tie-break below (intersect_scalar.cpp: t_limit; same in the packet path).
+inline constexpr int32_t tie_ulps = 4;
+
 /// The closest hit in (ray.t_min, ray.t_max). Ties in t go to the smaller object index, then the
 /// smaller primitive index, so the answer does not depend on traversal order.
 Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,

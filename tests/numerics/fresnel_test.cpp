@@ -1,0 +1,268 @@
+// Numerical stability suite, shading (numerics.md §9, checklist row 9): the exact dielectric
+// Fresnel term and refraction of shade/brdf_scalar.h and their packet twins in brdf_packet.h, on
+// a grid of indices (1, 1.0001, 1.5, 4 and their inverses) and cosines (0, tiny, near the critical
+// angle, 1, 1 + 1 ulp, garbage), against a double oracle. The eta = 1 sphere is rendered in
+// tests/render/render_features_test.cpp (RenderFeatures.GlassOfIndexOneIsInvisible).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "shade/brdf_packet.h"
+#include "shade/brdf_scalar.h"
+#include "simd/lanes.h"
+#include "support/widths.h"
+
+namespace raylane {
+namespace {
+
+const float inf = std::numeric_limits<float>::infinity();
+const float nan = std::numeric_limits<float>::quiet_NaN();
+constexpr double eps = 0x1.0p-24;  // unit roundoff of float
+
+const float etas[] = {1.0f, 1.0001f, 1.5f, 4.0f, 1.0f / 1.0001f, 1.0f / 1.5f, 0.25f};
+
+/// Exact unpolarised Fresnel in double for float inputs (numerics.md §9): R from the reflection
+/// amplitudes, T independently from the transmission amplitudes (Stokes), so that R + T = 1 is a
+/// real check. ci is clamped to [0, 1]; total internal reflection when sin^2_t >= 1 (which
+/// includes ci = 0 at eta = 1: grazing, nothing enters).
+struct FresnelRef {
+    double r = 1, t = 0, sin2_t = 1;
+    bool tir = true;
+};
+
+FresnelRef fresnel_ref(float cos_i, float eta_f) {
+    FresnelRef out;
+    const double ci = std::clamp(double(cos_i), 0.0, 1.0), eta = eta_f;
+    out.sin2_t = (1.0 - ci * ci) / (eta * eta);
+    if (out.sin2_t >= 1.0) return out;
+    out.tir = false;
+    if (ci == 0.0) return out;  // grazing, eta != 1: R = 1, T = 0
+    const double ct = std::sqrt(1.0 - out.sin2_t);
+    const double rs = (ci - eta * ct) / (ci + eta * ct), rp = (eta * ci - ct) / (eta * ci + ct);
+    out.r = 0.5 * (rs * rs + rp * rp);
+    const double ts = 2 * ci / (ci + eta * ct), tp = 2 * ci / (eta * ci + ct);
+    out.t = eta * ct / ci * 0.5 * (ts * ts + tp * tp);
+    return out;
+}
+
+/// Tolerance of the float R: the only rounding that matters is that of cos^2_t =
+/// ((eta - 1)(eta + 1) + ci^2) / eta^2 (a few ulps of its terms), amplified by dR / d(cos^2_t),
+/// which diverges like 1 / cos_t at the critical angle. Plus 1e-6 for the rest.
+double r_tolerance(float cos_i, float eta_f) {
+    const double ci = std::clamp(double(cos_i), 0.0, 1.0), eta = eta_f;
+    const double c2 = 1.0 - (1.0 - ci * ci) / (eta * eta);
+    if (!(c2 > 0.0) || ci == 0.0) return 1e-6;
+    auto r_of = [&](double cos2_t) {
+        const double ct = std::sqrt(std::max(cos2_t, 0.0));
+        const double rs = (ci - eta * ct) / (ci + eta * ct), rp = (eta * ci - ct) / (eta * ci + ct);
+        return 0.5 * (rs * rs + rp * rp);
+    };
+    const double err = 8 * eps * (std::fabs((eta - 1) * (eta + 1)) + ci * ci) / (eta * eta);
+    const double slope = std::fabs(r_of(c2 + err) - r_of(std::max(c2 - err, 0.0)));
+    return 1e-6 + slope;
+}
+
+/// The cosine grid: exact ends, tiny values, 1 + 1 ulp (a dot product of unit vectors), values
+/// that are not cosines, and the floats around each critical angle of the eta grid.
+std::vector<float> cosine_grid() {
+    std::vector<float> c = {0.0f,
+                            -0.0f,
+                            0x1.0p-126f,
+                            1e-30f,
+                            1e-7f,
+                            1e-4f,
+                            0.01f,
+                            0.1f,
+                            0.5f,
+                            0.7071f,
+                            0.9f,
+                            0.999f,
+                            1.0f,
+                            1.5f,
+                            -1e-7f,
+                            -0.5f,
+                            -1.0f,
+                            nan,
+                            inf,
+                            -inf,
+                            std::nextafter(1.0f, 0.0f),
+                            std::nextafter(1.0f, 2.0f)};
+    for (float eta : etas) {
+        if (!(eta < 1.0f)) continue;
+        float critical = float(std::sqrt(1.0 - double(eta) * eta));
+        for (int k = 0; k < 4; ++k) critical = std::nextafter(critical, 0.0f);
+        for (int k = 0; k < 9; ++k, critical = std::nextafter(critical, 1.0f))
+            c.push_back(critical);
+        for (double rel : {1e-6, 1e-4, 1e-2}) {
+            const double cc = std::sqrt(1.0 - double(eta) * eta);
+            c.push_back(float(cc * (1 + rel)));
+            c.push_back(float(cc * (1 - rel)));
+        }
+    }
+    return c;
+}
+
+std::string where(float ci, float eta) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "cos_i %.9g (bits %08x), eta %.9g", double(ci),
+                  std::bit_cast<uint32_t>(ci), double(eta));
+    return buf;
+}
+
+TEST(FresnelGrid, ConservesEnergyWithoutNaNForEveryIndexAndCosine) {
+    int checked = 0;
+    double worst_sum = 0, worst_r = 0;
+    for (float eta : etas) {
+        for (float ci : cosine_grid()) {
+            const std::string at = where(ci, eta);
+            const float r = fresnel_dielectric(ci, eta);
+            ASSERT_FALSE(std::isnan(r)) << at;
+            EXPECT_TRUE(r >= 0.0f && r <= 1.0f) << at << ": R = " << r;
+            if (std::isnan(ci)) {
+                EXPECT_EQ(r, 1.0f) << "a NaN cosine is treated as grazing";
+                continue;
+            }
+            const FresnelRef ref = fresnel_ref(ci, eta);
+            const double tol = r_tolerance(ci, eta);
+            // away from the TIR decision boundary the float path must decide as the oracle does
+            if (std::fabs(ref.sin2_t - 1.0) > 1e-5) {
+                EXPECT_NEAR(r, ref.r, tol) << at;
+                EXPECT_NEAR(double(r) + ref.t, 1.0, tol) << at << ": R + T";
+                worst_r = std::max(worst_r, std::fabs(r - ref.r));
+                worst_sum = std::max(worst_sum, std::fabs(double(r) + ref.t - 1.0));
+                ++checked;
+            }
+            if (eta == 1.0f && ci > 0.0f) {
+                EXPECT_EQ(r, 0.0f) << at << ": index-matched";
+            }
+            // the three-argument form with the oracle's cos_t agrees with the two-argument form
+            if (!ref.tir && ci > 0.0f) {
+                const float ct = float(std::sqrt(1.0 - ref.sin2_t));
+                EXPECT_NEAR(fresnel_dielectric(ci, eta, ct), ref.r, tol + 1e-6) << at;
+            }
+        }
+    }
+    EXPECT_GT(checked, 150);
+    std::printf("fresnel grid: %d points, max |R - R_ref| %.3g, max |R + T_ref - 1| %.3g\n",
+                checked, worst_r, worst_sum);
+}
+
+TEST(FresnelGrid, RisesContinuouslyToOneAtTheCriticalAngle) {
+    for (float eta : {1.0f / 1.0001f, 1.0f / 1.5f, 0.25f}) {
+        const double cc = std::sqrt(1.0 - double(eta) * eta);        // cos of the critical angle
+        const double cb = 1.0 / std::sqrt(1.0 + double(eta) * eta);  // cos of Brewster's angle
+        // from Brewster's angle (R dips there, r_p = 0) to the critical angle R only rises
+        float previous = 0.0f;
+        for (double rel : {1.0, 0.5, 0.1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6}) {
+            const float ci = float(cc + (cb - cc) * rel);
+            const float r = fresnel_dielectric(ci, eta);
+            EXPECT_GE(r, previous) << where(ci, eta);
+            previous = r;
+        }
+        // the last float cosine that still refracts, and the first that does not
+        float ci = float(cc);
+        while (fresnel_dielectric(ci, eta) == 1.0f) ci = std::nextafter(ci, 1.0f);
+        while (fresnel_dielectric(std::nextafter(ci, 0.0f), eta) < 1.0f)
+            ci = std::nextafter(ci, 0.0f);
+        const float last = fresnel_dielectric(ci, eta);
+        EXPECT_GT(last, 0.99f) << where(ci, eta) << ": no jump at the TIR boundary";
+        EXPECT_LT(last, 1.0f);
+        EXPECT_EQ(fresnel_dielectric(std::nextafter(ci, 0.0f), eta), 1.0f);
+        EXPECT_NEAR(double(ci), cc, 1e-6) << "the boundary sits at the critical angle";
+        std::printf("eta %.6g: last refracting cos_i %.9g (critical %.9g), R there %.6f\n",
+                    double(eta), double(ci), cc, double(last));
+    }
+}
+
+TEST(FresnelGrid, RefractsWithoutNaNAndDecidesTotalInternalReflectionAsTheOracle) {
+    const vec3 n(0.0f, 0.0f, 1.0f);
+    for (float eta : etas) {
+        for (float c : cosine_grid()) {
+            if (!(c >= 0.0f && c <= 1.0f)) continue;
+            const float s = float(std::sqrt(std::max(0.0, 1.0 - double(c) * c)));
+            const vec3 d(s, 0.0f, -c);  // cos_i = -d.n = c exactly
+            vec3 t(nan);
+            float cos_t = nan;
+            const bool refracts = refract_direction(d, n, eta, t, cos_t);
+            const std::string at = where(c, eta);
+            ASSERT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) << at;
+            ASSERT_TRUE(cos_t >= 0.0f && cos_t <= 1.0f) << at << ": cos_t " << cos_t;
+            const FresnelRef ref = fresnel_ref(c, eta);
+            if (eta == 1.0f) {
+                EXPECT_TRUE(refracts) << at;
+                EXPECT_EQ(t, d) << at << ": eta = 1 goes straight on";
+                continue;
+            }
+            if (std::fabs(ref.sin2_t - 1.0) > 1e-5) {
+                EXPECT_EQ(refracts, !ref.tir) << at;
+            }
+            if (!refracts) {
+                EXPECT_EQ(t, reflect_direction(d, n)) << at;
+                EXPECT_EQ(cos_t, 0.0f) << at;
+                EXPECT_EQ(fresnel_dielectric(c, eta), 1.0f) << at;
+            } else {
+                EXPECT_NEAR(glm::length(t), 1.0f, 2e-6f) << at;
+                EXPECT_LE(t.z, 0.0f) << at << ": the refracted ray continues below";
+                EXPECT_NEAR(-t.z, cos_t, 2e-6f) << at;
+            }
+        }
+    }
+}
+
+// ---- packet path ----------------------------------------------------------------------------
+
+template <class T>
+class FresnelGridPacket : public ::testing::Test {};
+TYPED_TEST_SUITE(FresnelGridPacket, Widths, WidthName);
+
+/// No transcendental function is involved, so every lane must equal the scalar bit for bit:
+/// R, the TIR decision, the refracted direction and cos_t.
+TYPED_TEST(FresnelGridPacket, MatchesTheScalarBitForBit) {
+    constexpr int W = TypeParam::value;
+    struct Case {
+        float c, eta;
+    };
+    std::vector<Case> cases;
+    for (float eta : etas)
+        for (float c : cosine_grid()) cases.push_back({c, eta});
+    while (cases.size() % W != 0) cases.push_back(cases.front());
+    const vec3 n(0.0f, 0.0f, 1.0f);
+    for (size_t i = 0; i < cases.size(); i += W) {
+        float cs[W], es[W], dx[W], dz[W], zeros[W], ones[W];
+        for (int k = 0; k < W; ++k) {
+            const Case& c = cases[i + size_t(k)];
+            cs[k] = c.c, es[k] = c.eta, zeros[k] = 0.0f, ones[k] = 1.0f;
+            const float cc = std::clamp(c.c, 0.0f, 1.0f);  // NaN -> 0 here: d must be finite
+            dz[k] = -(cc == cc ? cc : 0.0f);
+            dx[k] = float(std::sqrt(std::max(0.0, 1.0 - double(dz[k]) * dz[k])));
+        }
+        const vfloat<W> c = load<W>(cs), eta = load<W>(es);
+        const vfloat<W> r = fresnel_dielectric<W>(c, eta);
+        const Vec3<W> d = load_vec3<W>(dx, zeros, dz), nn = load_vec3<W>(zeros, zeros, ones);
+        Vec3<W> t;
+        vfloat<W> cos_t;
+        const vmask<W> refracts = refract_direction<W>(d, nn, eta, t, cos_t);
+        for (int k = 0; k < W; ++k) {
+            const Case& cs1 = cases[i + size_t(k)];
+            const std::string at = where(cs1.c, cs1.eta);
+            EXPECT_EQ(std::bit_cast<uint32_t>(get(r, k)),
+                      std::bit_cast<uint32_t>(fresnel_dielectric(cs1.c, cs1.eta)))
+                << at;
+            vec3 ts;
+            float cts;
+            const vec3 ds(dx[k], 0.0f, dz[k]);
+            EXPECT_EQ(get(refracts, k), refract_direction(ds, n, cs1.eta, ts, cts)) << at;
+            EXPECT_EQ(vec3(get(t.x, k), get(t.y, k), get(t.z, k)), ts) << at;
+            EXPECT_EQ(get(cos_t, k), cts) << at;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace raylane
