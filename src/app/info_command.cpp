@@ -42,8 +42,11 @@ int run_info(const std::string& path) {
     for (size_t i = 0; i < accel.meshes.size(); ++i) {
         const MeshAccel& m = accel.meshes[i];
         const std::string label = "mesh " + std::to_string(i);
-        std::printf("%-10s %s: %zu triangles\n", label.c_str(), scene.meshes[i].name.c_str(),
+        std::printf("%-10s %s: %zu triangles", label.c_str(), scene.meshes[i].name.c_str(),
                     m.verts.size());
+        if (scene.meshes[i].dropped_triangles > 0)
+            std::printf(" (%zu zero-area faces dropped)", scene.meshes[i].dropped_triangles);
+        std::printf("\n");
         const size_t vert_bytes = m.verts.size() * sizeof(TriangleVerts);
         const BvhStats s = compute_stats(m.bvh);
         print_bvh("", s, m.verts.size(), vert_bytes);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/drop_degenerate.h"
 #include "io/read_file.h"
 
 namespace raylane {
@@ -278,6 +279,7 @@ Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_err
         mesh.normals.clear();
         mesh.normal_tris.clear();
     }
+    drop_zero_area_triangles(mesh, name_for_errors);
     return mesh;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/drop_degenerate.h"
 #include "io/read_file.h"
 
 namespace raylane {
@@ -760,6 +761,7 @@ Mesh load_ply_from_memory(std::string_view bytes, const std::string& name_for_er
     if (mesh.tris.empty()) throw InputError(name_for_errors + ": no faces");
     if (header.has_normals) mesh.normal_tris = mesh.tris;
     if (header.has_uvs) mesh.uv_tris = mesh.tris;
+    drop_zero_area_triangles(mesh, name_for_errors);
     return mesh;
 }
 

@@ -148,6 +148,7 @@ struct Mesh {
     std::vector<uvec3> normal_tris;
     std::vector<uvec3> uv_tris;
     glm::mat3 normal_to_world{1.0f};  ///< inverse transpose of the baked transform (normal maps)
+    size_t dropped_triangles = 0;     ///< zero-area faces the loader removed
     size_t triangle_count() const { return tris.size(); }
 };
 

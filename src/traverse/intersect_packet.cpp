@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "traverse/box_packet.h"
 #include "traverse/cylinder_packet.h"
@@ -352,7 +353,25 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
         const Vec3<W> b = load_vec3<W>(pos[1][0], pos[1][1], pos[1][2]);
         const Vec3<W> c = load_vec3<W>(pos[2][0], pos[2][1], pos[2][2]);
         const Vec3<W> p = w * a + u * b + v * c;
-        const Vec3<W> ng = normalize(cross(b - a, c - a));
+        const Vec3<W> cr = cross(b - a, c - a);
+        Vec3<W> ng = normalize(cr);
+        // slivers and huge triangles: the normal in double, lane by lane (geometry_triangle)
+        const vfloat<W> n2 = dot(cr, cr);
+        const vmask<W> unsafe =
+            mask_andnot(on_mesh, mask_and(n2 >= vfloat<W>(std::numeric_limits<float>::min()),
+                                          n2 <= vfloat<W>(std::numeric_limits<float>::max())));
+        if (any(unsafe)) {
+            float nx[W], ny[W], nz[W];
+            store(nx, ng.x), store(ny, ng.y), store(nz, ng.z);
+            for_each_active(unsafe, [&](int i) {
+                const vec3 d =
+                    triangle_normal_in_double(vec3(pos[0][0][i], pos[0][1][i], pos[0][2][i]),
+                                              vec3(pos[1][0][i], pos[1][1][i], pos[1][2][i]),
+                                              vec3(pos[2][0][i], pos[2][1][i], pos[2][2][i]));
+                nx[i] = d.x, ny[i] = d.y, nz[i] = d.z;
+            });
+            ng = load_vec3<W>(nx, ny, nz);
+        }
         Vec3<W> ns = ng;
         if (normal_bits != 0) {
             const Vec3<W> n = w * load_vec3<W>(nrm[0][0], nrm[0][1], nrm[0][2]) +

@@ -280,12 +280,17 @@ SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
         return sp;
     }
     const Ray r = to_object_space(object, ray);
-    const vec3 p = r.org + hit.t * r.dir;
+    vec3 p = r.org + hit.t * r.dir;
     LocalGeometry g;
     switch (object.kind) {
-        case ShapeKind::sphere:
-            g = geometry_sphere(scene.spheres[object.shape], p);
+        case ShapeKind::sphere: {
+            const Sphere& s = scene.spheres[object.shape];
+            g = geometry_sphere(s, p);
+            // back onto the surface: o + t d is off it by the error of t times |d|, which grows
+            // with the distance of the origin (numerics.md section 4)
+            p = s.center + s.radius * g.normal;
             break;
+        }
         case ShapeKind::box:
             g = geometry_box(scene.boxes[object.shape], p);
             break;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <utility>
 
@@ -135,12 +136,32 @@ inline bool intersect_triangle(const WatertightRayOf<T>& wr, Vec3Of<T> a, Vec3Of
     return true;
 }
 
+/// False when |n|^2 of a float cross product is not a normal finite float: a sliver or a tiny
+/// triangle (below FLT_MIN, or flushed to zero under FTZ) or a huge one, whose float normalize
+/// gives NaN or a wrong length (numerics.md section 8).
+inline bool float_normal_is_safe(float length2) {
+    return length2 >= std::numeric_limits<float>::min() &&
+           length2 <= std::numeric_limits<float>::max();
+}
+
+/// The unit normal computed in double from double edges, for the triangles float_normal_is_safe
+/// rejects. Shared by both paths.
+inline vec3 triangle_normal_in_double(vec3 a, vec3 b, vec3 c) {
+    const glm::dvec3 da(a);
+    return vec3(glm::normalize(glm::cross(glm::dvec3(b) - da, glm::dvec3(c) - da)));
+}
+
 /// Normal and uv at a hit: normal = normalize(cross(b - a, c - a)), the side the winding
-/// (a, b, c) gives, and uv = (u, v) the barycentric weights of b and c.
+/// (a, b, c) gives (in double when float would underflow or overflow), and uv = (u, v) the
+/// barycentric weights of b and c.
 template <typename T>
 inline LocalGeometryOf<T> geometry_triangle(Vec3Of<T> a, Vec3Of<T> b, Vec3Of<T> c, T u, T v) {
     LocalGeometryOf<T> g;
-    g.normal = glm::normalize(glm::cross(b - a, c - a));
+    const Vec3Of<T> n = glm::cross(b - a, c - a);
+    g.normal = glm::normalize(n);
+    if constexpr (std::is_same_v<T, float>) {
+        if (!float_normal_is_safe(glm::dot(n, n))) g.normal = triangle_normal_in_double(a, b, c);
+    }
     g.uv = glm::vec<2, T>(u, v);
     return g;
 }

@@ -75,8 +75,9 @@ constexpr const char* four_vertices =
 // good input -----------------------------------------------------------------------------
 
 TEST(LoadObj, ReadsPositionsUvsAndNormals) {
-    Mesh m = obj("v 1.5 -2 3e2\nvt 0.25 0.75\nvn 0 -1 0\nf 1/1/1 1/1/1 1/1/1\n");
-    ASSERT_EQ(m.positions.size(), 1u);
+    // (a face with area: the loader drops zero-area faces, and a mesh needs one face)
+    Mesh m = obj("v 1.5 -2 3e2\nv 0 0 0\nv 0 1 0\nvt 0.25 0.75\nvn 0 -1 0\nf 1/1/1 2/1/1 3/1/1\n");
+    ASSERT_EQ(m.positions.size(), 3u);
     EXPECT_EQ(m.positions[0], vec3(1.5f, -2.0f, 300.0f));
     ASSERT_EQ(m.uvs.size(), 1u);
     EXPECT_EQ(m.uvs[0], vec2(0.25f, 0.75f));
@@ -136,9 +137,9 @@ TEST(LoadObj, TriangulatesPolygonsAsAFan) {
 }
 
 TEST(LoadObj, AcceptsCrlfTabsRunsOfSpacesAndNoFinalNewline) {
-    Mesh plain = obj("v 1 2 3\nv 4 5 6\nv 7 8 9\nvt 0.5 0.5\nf 1/1 2/1 3/1\n");
+    Mesh plain = obj("v 1 2 3\nv 4 5 6\nv 7 8 10\nvt 0.5 0.5\nf 1/1 2/1 3/1\n");
     Mesh messy =
-        obj("\xEF\xBB\xBFv  1 2 3\r\n\tv\t4\t5\t6  \r\n  v 7   8 9 \t\r\n\r\nvt 0.5 0.5\r\nf  "
+        obj("\xEF\xBB\xBFv  1 2 3\r\n\tv\t4\t5\t6  \r\n  v 7   8 10 \t\r\n\r\nvt 0.5 0.5\r\nf  "
             "1/1\t2/1 3/1 ");
     expect_same_mesh(plain, messy);
 }
@@ -153,7 +154,8 @@ TEST(LoadObj, IgnoresCommentsGroupsMaterialsAndUnknownKeywords) {
 }
 
 TEST(LoadObj, ReadsTextureCoordinatesWithOneToThreeValues) {
-    Mesh m = obj("v 0 0 0\nvt 0.5\nvt 0.25 0.75\nvt 0.1 0.2 0.3\nf 1/1 1/2 1/3\n");
+    Mesh m =
+        obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5\nvt 0.25 0.75\nvt 0.1 0.2 0.3\nf 1/1 2/2 3/3\n");
     ASSERT_EQ(m.uvs.size(), 3u);
     EXPECT_EQ(m.uvs[0], vec2(0.5f, 0.0f));
     EXPECT_EQ(m.uvs[1], vec2(0.25f, 0.75f));
