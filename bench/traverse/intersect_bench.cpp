@@ -130,7 +130,7 @@ Workload* workload(const std::string& name) {
         const SurfacePoint sp = surface_at(w->scene, r, h);
         vec3 n = sp.geometric_normal;
         if (glm::dot(n, r.dir) > 0.0f) n = -n;
-        const vec3 o = offset_ray_origin(sp.position, n);
+        const vec3 o = offset_ray_origin(sp.position, n, ray_reach(r, h.t));
         for (const Light& light : w->scene.lights) {
             if (light.kind == LightKind::point)
                 w->shadow.push_back({o, light.position - o, 0.0f, 1.0f});

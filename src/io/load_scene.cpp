@@ -11,6 +11,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -290,6 +291,7 @@ class SceneReader {
         }
         if (const Json* v = find(top, "description")) text(Node{v, "$.description"});
         scene.camera = read_camera(child(top, "camera"));
+        scene.world_origin = world_origin_;
         if (const Json* v = find(top, "background")) {
             scene.background = color(Node{v, "$.background"});
         }
@@ -325,6 +327,22 @@ class SceneReader {
   private:
     std::string file_;
     std::string dir_;
+    glm::dvec3 world_origin_{0.0};  ///< the world point stored as (0, 0, 0); set by read_camera
+
+    /// The world point that becomes Raylane's origin (numerics.md section 17). A scene that looks
+    /// at a point within 8 viewing distances of the world origin is not moved. Farther out, the
+    /// look-at point rounded to a multiple of the power of two at or above the viewing distance
+    /// becomes the origin, so that the subject's coordinates are no larger than the view and
+    /// keep the precision they would have at home.
+    static glm::dvec3 world_origin_for(glm::dvec3 position, glm::dvec3 look_at) {
+        const double distance = glm::length(look_at - position);
+        const glm::dvec3 a = glm::abs(look_at);
+        if (!(distance > 0.0 && distance < std::numeric_limits<double>::infinity()) ||
+            std::max({a.x, a.y, a.z}) <= 8.0 * distance)
+            return glm::dvec3(0.0);
+        const double grid = std::exp2(std::ceil(std::log2(distance)));
+        return grid * glm::round(look_at / grid);
+    }
     std::map<std::string, Mesh> meshes_;       ///< loaded meshes by resolved path, before baking
     std::map<std::string, int32_t> textures_;  ///< texture index by file and options
 
@@ -419,7 +437,11 @@ class SceneReader {
         }
         return v;
     }
-    vec3 point(const Node& n) const { return vec3(dvec3(n)); }
+    /// A world-space point, moved so that world_origin_ becomes Raylane's origin (in double,
+    /// rounded to float once).
+    vec3 point(const Node& n) const { return vec3(dvec3(n) - world_origin_); }
+    /// A point in an object's own space, or an offset between points: not moved.
+    vec3 vector(const Node& n) const { return vec3(dvec3(n)); }
     vec3 color(const Node& n) const { return vec3(dvec3(n, Sign::non_negative)); }
     /// A direction, normalised in double; the zero vector is an error.
     vec3 direction(const Node& n) const {
@@ -429,12 +451,13 @@ class SceneReader {
         return vec3(v / len);
     }
 
-    Camera read_camera(const Node& n) const {
+    Camera read_camera(const Node& n) {
         expect_keys(n, {"position", "look_at", "up", "fov_deg", "fov_axis", "resolution", "spp",
                         "lens_radius", "focal_distance"});
         Camera c;
-        c.position = point(child(n, "position"));
         Node look = child(n, "look_at");
+        world_origin_ = world_origin_for(dvec3(child(n, "position")), dvec3(look));
+        c.position = point(child(n, "position"));
         c.look_at = point(look);
         if (const Json* v = find(n, "up")) c.up = direction(Node{v, member_path(n.path, "up")});
         Node fov = child(n, "fov_deg");
@@ -716,9 +739,9 @@ class SceneReader {
                 expect_keys(n, {"type", "corner", "edge_u", "edge_v", "color", "intensity",
                                 "shadows", "samples", "visible"});
                 light.position = point(child(n, "corner"));
-                light.edge_u = point(child(n, "edge_u"));
+                light.edge_u = vector(child(n, "edge_u"));
                 Node ev = child(n, "edge_v");
-                light.edge_v = point(ev);
+                light.edge_v = vector(ev);
                 if (!(glm::length(glm::cross(light.edge_u, light.edge_v)) > 0.0f)) {
                     fail(ev, "the rectangle has zero area (edges parallel or zero)");
                 }
@@ -974,12 +997,21 @@ class SceneReader {
         if (const Json* v = find(n, "transform")) {
             t = read_transform(Node{v, member_path(n.path, "transform")});
         }
+        // A shape with a transform (and every cylinder and mesh) is given in its own space and
+        // the transform takes it to the world; without one its points are world points. Either
+        // way it moves with the world origin.
+        const bool own_space =
+            !is_identity(t) || object.kind == ShapeKind::cylinder || object.kind == ShapeKind::mesh;
+        if (own_space) t.translate -= world_origin_;
+        auto shape_point = [&](const Node& p) { return own_space ? vector(p) : point(p); };
+        const vec3 shape_origin = own_space ? vec3(0.0f) : vec3(-world_origin_);
 
         switch (object.kind) {
             case ShapeKind::sphere: {
                 Sphere s;
+                s.center = shape_origin;
                 if (const Json* v = find(n, "center")) {
-                    s.center = point(Node{v, member_path(n.path, "center")});
+                    s.center = shape_point(Node{v, member_path(n.path, "center")});
                 }
                 s.radius = real(child(n, "radius"), Sign::positive);
                 object.shape = uint32_t(scene.spheres.size());
@@ -989,8 +1021,8 @@ class SceneReader {
             case ShapeKind::box: {
                 Box b;
                 Node hi = child(n, "max");
-                b.lo = point(child(n, "min"));
-                b.hi = point(hi);
+                b.lo = shape_point(child(n, "min"));
+                b.hi = shape_point(hi);
                 if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) {
                     fail(hi, "must be >= min in every component");
                 }
@@ -1008,8 +1040,9 @@ class SceneReader {
             }
             case ShapeKind::plane: {
                 Plane p;
+                p.point = shape_origin;
                 if (const Json* v = find(n, "point")) {
-                    p.point = point(Node{v, member_path(n.path, "point")});
+                    p.point = shape_point(Node{v, member_path(n.path, "point")});
                 }
                 p.normal = direction(child(n, "normal"));
                 object.shape = uint32_t(scene.planes.size());
@@ -1020,9 +1053,9 @@ class SceneReader {
                 Node verts = child(n, "vertices");
                 expect(verts, verts.j->is_array() && verts.j->size() == 3, "an array of 3 points");
                 Triangle tri;
-                tri.p0 = point(Node{&(*verts.j)[0], element_path(verts.path, 0)});
-                tri.p1 = point(Node{&(*verts.j)[1], element_path(verts.path, 1)});
-                tri.p2 = point(Node{&(*verts.j)[2], element_path(verts.path, 2)});
+                tri.p0 = shape_point(Node{&(*verts.j)[0], element_path(verts.path, 0)});
+                tri.p1 = shape_point(Node{&(*verts.j)[1], element_path(verts.path, 1)});
+                tri.p2 = shape_point(Node{&(*verts.j)[2], element_path(verts.path, 2)});
                 glm::dvec3 e1 = glm::dvec3(tri.p1) - glm::dvec3(tri.p0);
                 glm::dvec3 e2 = glm::dvec3(tri.p2) - glm::dvec3(tri.p0);
                 if (glm::cross(e1, e2) == glm::dvec3(0.0)) {

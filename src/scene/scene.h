@@ -193,6 +193,9 @@ struct ShadingOptions {
 
 struct Scene {
     std::string source;  ///< file the scene came from ("<built-in>" otherwise)
+    /// The world point stored as (0, 0, 0): every position in the scene is relative to it
+    /// (load_scene picks it near the camera's look-at point; numerics.md section 17).
+    glm::dvec3 world_origin{0.0};
     Camera camera;
     vec3 background{0.0f};
     int32_t environment = -1;  ///< Scene::textures index (latitude-longitude); -1 = background

@@ -191,6 +191,7 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
 
     // the shading point (shade_scalar.cpp: shading_point)
     const SurfacePacket<W> sp = surface_at(scene, rays, hits, active);
+    const vfloat<W> reach = ray_reach<W>(rays, hits.t);
     const Vec3<W> view = rays.dir / sqrt(dot(rays.dir, rays.dir));
     Vec3<W> ns = sp.shading_normal;
     if constexpr ((F & feature_textures) != 0) {
@@ -248,8 +249,8 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
                 refracts, m.fresnel && o.fresnel ? fresnel_dielectric<W>(cos_i, eta, cos_t) : zero,
                 one);
             const Vec3<W> reflected_dir = reflect_direction<W>(view, ns);
-            const Vec3<W> org_out = offset_ray_origin(sp.position, ng);
-            const Vec3<W> org_in = offset_ray_origin(sp.position, -ng);
+            const Vec3<W> org_out = offset_ray_origin(sp.position, ng, reach);
+            const Vec3<W> org_in = offset_ray_origin(sp.position, -ng, reach);
             const vec3 no_filter(1.0f);
             const vmask<W> reflects = mask_and(alive, r > zero);
             if (o.override_reflected) {
@@ -279,7 +280,7 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
 
     // mirror weights (shade_scalar.cpp: mirror_term): the local term is scaled by 1 - R
     Vec3<W> local_weight = weight;
-    const Vec3<W> origin = offset_ray_origin(sp.position, ng);
+    const Vec3<W> origin = offset_ray_origin(sp.position, ng, reach);
     if constexpr ((F & feature_reflection) != 0) {
         if (m.reflection > 0.0f) {
             accumulate<W>(out, slot, weight * (vfloat<W>(m.k_a_after) * c_d), active);

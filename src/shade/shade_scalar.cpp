@@ -23,12 +23,14 @@ struct ShadingPoint {
     vec3 view{0.0f, 0.0f, 1.0f};  ///< unit ray direction
     vec3 c_d{0.0f}, c_s{0.0f};
     bool entering = true;  ///< the ray arrives on the side the geometric normal points to
+    float reach = 0.0f;    ///< ray_reach of the ray that found the point (offset_ray_origin)
 };
 
 ShadingPoint shading_point(const Scene& scene, const Material& m, const Ray& ray, const Hit& hit) {
     const SurfacePoint sp = surface_at(scene, ray, hit);
     ShadingPoint p;
     p.position = sp.position;
+    p.reach = ray_reach(ray, hit.t);
     p.view = ray.dir / std::sqrt(glm::dot(ray.dir, ray.dir));
     vec3 ns = sp.shading_normal;
     const Object& object = scene.objects[hit.object];
@@ -59,7 +61,7 @@ vec3 local_term(const Scene& scene, const Accel& accel, const Material& m, const
                 ShadeCounts& counts) {
     const BrdfScaling brdf = scene.shading.brdf;
     const vec3 wo = -p.view;
-    const vec3 origin = offset_ray_origin(p.position, p.ng);
+    const vec3 origin = offset_ray_origin(p.position, p.ng, p.reach);
     vec3 color = m.k_a * p.c_d;
     for (size_t j = 0; j < scene.lights.size(); ++j) {
         const Light& light = scene.lights[j];
@@ -122,7 +124,7 @@ vec3 mirror_term(const Scene& scene, const Accel& accel, const Material& m, cons
         // a reflection about a mapped n_s that points below the geometric surface is discarded
         ++counts.reflection_rays;
         PathRay child;
-        child.ray = Ray{offset_ray_origin(p.position, p.ng), dir, 0.0f, infinity};
+        child.ray = Ray{offset_ray_origin(p.position, p.ng, p.reach), dir, 0.0f, infinity};
         child.key = child_key(path.key, purpose_mirror, 0);
         child.reflection_depth = path.reflection_depth + 1;
         child.refraction_depth = path.refraction_depth;
@@ -150,7 +152,7 @@ vec3 glass_term(const Scene& scene, const Accel& accel, const Material& m, const
                                              : 0.0f;
     auto trace_child = [&](vec3 org_normal, vec3 dir, uint32_t purpose, bool inside) {
         PathRay child;
-        child.ray = Ray{offset_ray_origin(p.position, org_normal), dir, 0.0f, infinity};
+        child.ray = Ray{offset_ray_origin(p.position, org_normal, p.reach), dir, 0.0f, infinity};
         child.key = child_key(path.key, purpose, 0);
         child.reflection_depth = path.reflection_depth;
         child.refraction_depth = path.refraction_depth + 1;

@@ -291,12 +291,26 @@ SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
             p = s.center + s.radius * g.normal;
             break;
         }
-        case ShapeKind::box:
-            g = geometry_box(scene.boxes[object.shape], p);
+        case ShapeKind::box: {
+            const Box& b = scene.boxes[object.shape];
+            g = geometry_box(b, p);
+            // onto the face plane the normal names
+            for (int k = 0; k < 3; ++k)
+                if (g.normal[k] != 0.0f) p[k] = g.normal[k] < 0.0f ? b.lo[k] : b.hi[k];
             break;
-        case ShapeKind::cylinder:
-            g = geometry_cylinder(scene.cylinders[object.shape], p);
+        }
+        case ShapeKind::cylinder: {
+            const Cylinder& c = scene.cylinders[object.shape];
+            g = geometry_cylinder(c, p);
+            // onto the cap plane, or back onto the side at the same height
+            if (g.normal.y != 0.0f) {
+                p.y = g.normal.y < 0.0f ? 0.0f : c.height;
+            } else {
+                p.x = c.radius * g.normal.x;
+                p.z = c.radius * g.normal.z;
+            }
             break;
+        }
         case ShapeKind::plane:
             g = geometry_plane(scene.planes[object.shape], p);
             break;

@@ -78,7 +78,7 @@ RaySets make_ray_sets(const Loaded& l) {
         const SurfacePoint sp = surface_at(l.scene, s.camera[i], h);
         vec3 n = sp.geometric_normal;
         if (glm::dot(n, s.camera[i].dir) > 0.0f) n = -n;
-        const vec3 o = offset_ray_origin(sp.position, n);
+        const vec3 o = offset_ray_origin(sp.position, n, ray_reach(s.camera[i], h.t));
         for (const Light& light : l.scene.lights) {
             Ray r;
             r.org = o;

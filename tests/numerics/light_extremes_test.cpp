@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/offset.h"
 #include "render/camera_rays.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
@@ -217,9 +218,9 @@ TEST(LightExtremes, LightsLyingOnAndInsideSurfacesRenderWithoutNaN) {
 
 /// A white diffuse plane (Phong material: k_d c_d cos / d^2, no 1/pi) seen from straight above,
 /// under a point light of intensity I at height h: each pixel is I h / (h^2 + x^2)^(3/2) at its
-/// hit point (error-vs-time.md §2.1.3). Light is gathered from the shadow-ray origin, 2^-16
-/// above the plane (core/offset.h, near y = 0), which lowers the light by that much: a relative
-/// error up to 3 2^-16 / h, allowed for.
+/// hit point (error-vs-time.md §2.1.3). Light is gathered from the shadow-ray origin, 2^-16 times
+/// the camera ray's reach above the plane (core/offset.h, near y = 0), which lowers the light by
+/// that much: a relative error up to 3 offset / h, allowed for.
 Scene lit_plane(float h) {
     Scene s;
     s.camera.position = vec3(0.0f, 3.0f, 0.0f);
@@ -243,13 +244,14 @@ Scene lit_plane(float h) {
 void expect_irradiance(const Scene& s, const RenderResult& r, const std::string& path) {
     const CameraFrame frame = make_camera_frame(s.camera);
     const double h = s.lights[0].position.y, intensity = s.lights[0].intensity;
-    const double offset = 0x1.0p-16;
     double worst = 0;
     for (int y = 0; y < s.camera.height; ++y) {
         for (int x = 0; x < s.camera.width; ++x) {
             const Ray ray = camera_ray(frame, float(x) + 0.5f, float(y) + 0.5f);
             const dvec3 o(ray.org), d(ray.dir);
-            const dvec3 p = o + d * (-o.y / d.y);
+            const double t = -o.y / d.y;
+            const double offset = 0x1.0p-16 * double(ray_reach(ray, float(t)));
+            const dvec3 p = o + d * t;
             const double r2 = p.x * p.x + p.z * p.z;
             const double e = intensity * h / std::pow(h * h + r2, 1.5);
             const float v = r.film.at(x, y).x;

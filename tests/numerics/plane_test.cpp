@@ -90,7 +90,7 @@ TEST(Plane, ShadowRaysLeavingThePlaneAreNotOccludedByIt) {
             const SurfacePoint sp = surface_at(scene, r, h);
             const vec3 ng = glm::dot(sp.geometric_normal, d) > 0.0f ? -sp.geometric_normal
                                                                     : sp.geometric_normal;
-            const vec3 org = offset_ray_origin(sp.position, ng);
+            const vec3 org = offset_ray_origin(sp.position, ng, ray_reach(r, h.t));
             shadow.push_back({org, light - org, 0.0f, 1.0f});
         }
         ASSERT_GT(shadow.size(), n / 2);

@@ -166,7 +166,7 @@ TEST(Sphere, FarViewedSpheresDoNotShadowThemselves) {
             // lit in exact arithmetic: the light is above the tangent plane at the true point
             const glm::dvec3 q = glm::normalize(glm::dvec3(sp.position));
             if (!(glm::dot(glm::dvec3(light) - q, q) > 1e-3 * dist)) continue;
-            const vec3 o = offset_ray_origin(sp.position, ng);
+            const vec3 o = offset_ray_origin(sp.position, ng, ray_reach(r, h.t));
             shadow.push_back({o, light - o, 0.0f, 1.0f});
         }
         ASSERT_GT(shadow.size(), n / 2);
