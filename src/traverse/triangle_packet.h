@@ -16,6 +16,7 @@ template <int W>
 struct WatertightPacket {
     vfloat<W> ox, oy, oz;  ///< org[kx], org[ky], org[kz]
     vfloat<W> sx, sy, sz;
+    Vec3<W> org, dir;  ///< the rays' own origins and directions (plane_distance_in_double)
     vmask<W> kx0, kx1, ky0, ky1, kz0, kz1;  ///< lane masks: kx == 0, kx == 1, ...
     bool uniform = true;
     int kx = 0, ky = 1, kz = 2;
@@ -66,6 +67,8 @@ inline WatertightPacket<W> make_watertight_ray(const RayPacket<W>& rays, vmask<W
     wr.sx = dx / dz;
     wr.sy = dy / dz;
     wr.sz = vfloat<W>(1.0f) / dz;
+    wr.org = rays.org;
+    wr.dir = rays.dir;
     // uniform: every active lane has the same (kx, ky, kz)
     const uint32_t act = bits(active);
     const uint32_t bx0 = bits(wr.kx0) & act, bx1 = bits(wr.kx1) & act;
@@ -145,14 +148,27 @@ inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, vec3 a, vec3 b
     const vfloat<W> bz = wr.sz * Bkz;
     const vfloat<W> cz = wr.sz * Ckz;
     const vfloat<W> t_scaled = e_a * az + e_b * bz + e_c * cz;
+    // cancellation: t from the plane in double, lane by lane
+    const vfloat<W> terms = abs(e_a * az) + abs(e_b * bz) + abs(e_c * cz);
+    const vmask<W> cancel = mask_and(hit, terms > vfloat<W>(2.0f) * abs(t_scaled));
+    vfloat<W> t_plane = zero;
+    if (any(cancel)) {
+        for_each_active(cancel, [&](int i) {
+            set(t_plane, i,
+                plane_distance_in_double(vec3(get(wr.org.x, i), get(wr.org.y, i), get(wr.org.z, i)),
+                                         vec3(get(wr.dir.x, i), get(wr.dir.y, i), get(wr.dir.z, i)),
+                                         a, b, c));
+        });
+    }
     const vfloat<W> det_sign = select(det < zero, vfloat<W>(-1.0f), vfloat<W>(1.0f));
     const vfloat<W> abs_det = det_sign * det;
     const vfloat<W> t_signed = det_sign * t_scaled;
-    hit = mask_and(hit, mask_and(t_signed > t_min * abs_det, t_signed < t_max * abs_det));
+    const vmask<W> in_scaled = mask_and(t_signed > t_min * abs_det, t_signed < t_max * abs_det);
+    hit = mask_or(cancel, mask_and(mask_andnot(hit, cancel), in_scaled));
     if (none(hit)) return hit;
 
     // divide
-    const vfloat<W> t_hit = t_scaled / det;
+    const vfloat<W> t_hit = select(cancel, t_plane, t_scaled / det);
     hit = mask_and(hit, mask_and(t_hit > t_min, t_hit < t_max));
     t = select(hit, t_hit, t);
     u = select(hit, e_b / det, u);

@@ -18,6 +18,7 @@ namespace raylane {
 template <typename T>
 struct WatertightRayOf {
     Vec3Of<T> org{T(0)};
+    Vec3Of<T> dir{T(0), T(0), T(1)};  ///< the ray's own direction (plane_distance_in_double)
     int kx = 0, ky = 1, kz = 2;
     T sx = T(0), sy = T(0), sz = T(1);
 };
@@ -30,6 +31,7 @@ template <typename T>
 inline WatertightRayOf<T> make_watertight_ray(const RayOf<T>& ray) {
     WatertightRayOf<T> wr;
     wr.org = ray.org;
+    wr.dir = ray.dir;
     const Vec3Of<T> ad = glm::abs(ray.dir);
     wr.kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
     wr.kx = (wr.kz + 1) % 3;
@@ -61,6 +63,15 @@ inline double difference_of_products(double x, double y, double z, double w) {
     const double zw = z * w;
     const double err = std::fma(-z, w, zw);
     return std::fma(x, y, -zw) + err;
+}
+
+/// The distance along d from o to the plane of (a, b, c), dot(a - o, n) / dot(d, n) with
+/// n = cross(b - a, c - a), in double: for rays whose float t loses its bits to cancellation.
+/// Shared by both paths.
+inline float plane_distance_in_double(vec3 o, vec3 d, vec3 a, vec3 b, vec3 c) {
+    const glm::dvec3 da(a);
+    const glm::dvec3 n = glm::cross(glm::dvec3(b) - da, glm::dvec3(c) - da);
+    return static_cast<float>(glm::dot(da - glm::dvec3(o), n) / glm::dot(glm::dvec3(d), n));
 }
 
 /// True when the ray hits triangle (a, b, c) from either side at t in the open interval
@@ -122,6 +133,21 @@ inline bool intersect_triangle(const WatertightRayOf<T>& wr, Vec3Of<T> a, Vec3Of
     const T bz = wr.sz * B[wr.kz];
     const T cz = wr.sz * C[wr.kz];
     const T t_scaled = e_a * az + e_b * bz + e_c * cz;
+    if constexpr (std::is_same_v<T, float>) {
+        // cancellation: the origin lies between the vertices' depths (a surface close to the
+        // origin, far vertices), so t_scaled is a small difference of large terms and may be
+        // hundreds of ulps off; two coplanar triangles would then disagree on t, and the
+        // tie-break with them. t from the plane in double instead (numerics.md section 2).
+        const float terms = std::fabs(e_a * az) + std::fabs(e_b * bz) + std::fabs(e_c * cz);
+        if (terms > 2.0f * std::fabs(t_scaled)) {
+            const float t_plane = plane_distance_in_double(wr.org, wr.dir, a, b, c);
+            if (!(t_plane > t_min && t_plane < t_max)) return false;
+            t = t_plane;
+            u = e_b / det;
+            v = e_c / det;
+            return true;
+        }
+    }
     const T det_sign = std::copysign(T(1), det);
     const T abs_det = det_sign * det;
     const T t_signed = det_sign * t_scaled;
