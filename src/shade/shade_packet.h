@@ -221,7 +221,7 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
     const vmask<W> entering = mask_not(dot(sp.geometric_normal, view) > zero);
     const Vec3<W> ng = select(entering, sp.geometric_normal, -sp.geometric_normal);
     ns = select(dot(ns, ng) < zero, -ns, ns);
-    ns = keep_above<W>(ns, ng);
+    ns = face_viewer<W>(keep_above<W>(ns, ng), ng, -view);
     Vec3<W> c_d = bc<W>(m.c_d), c_s = bc<W>(m.c_s);
     if constexpr ((F & feature_textures) != 0) {
         if (m.texture >= 0) {

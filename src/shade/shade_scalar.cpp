@@ -44,7 +44,7 @@ ShadingPoint shading_point(const Scene& scene, const Material& m, const Ray& ray
     p.entering = !(glm::dot(sp.geometric_normal, p.view) > 0.0f);
     p.ng = p.entering ? sp.geometric_normal : -sp.geometric_normal;
     if (glm::dot(ns, p.ng) < 0.0f) ns = -ns;
-    p.ns = keep_above(ns, p.ng);
+    p.ns = face_viewer(keep_above(ns, p.ng), p.ng, -p.view);
     p.c_d = m.texture >= 0 ? texture_lookup(scene.textures[size_t(m.texture)], sp.uv) : m.c_d;
     p.c_s = m.texture >= 0 && m.texture_specular ? p.c_d : m.c_s;
     return p;

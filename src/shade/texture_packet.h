@@ -231,4 +231,18 @@ inline Vec3<W> keep_above(const Vec3<W>& ns, const Vec3<W>& r) {
     return select(c >= cos_min, ns, select(t_length > vfloat<W>(1e-6f), bent, r));
 }
 
+/// face_viewer of texture_scalar.h for every lane.
+template <int W>
+inline Vec3<W> face_viewer(const Vec3<W>& ns, const Vec3<W>& ng, const Vec3<W>& wo) {
+    using namespace texture_detail;
+    const vfloat<W> cos_min(keep_above_cos);
+    const vfloat<W> a = dot(ns, wo);
+    const vmask<W> facing = a >= cos_min;
+    if (all(facing)) return ns;
+    const vfloat<W> b = dot(ng, wo);
+    const vfloat<W> lambda = select(b > cos_min, (cos_min - a) / (b - a), vfloat<W>(1.0f));
+    const Vec3<W> m = ns + (ng - ns) * lambda;
+    return select(facing, ns, m / sqrt(dot(m, m)));
+}
+
 }  // namespace raylane

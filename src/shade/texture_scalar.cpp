@@ -160,4 +160,13 @@ vec3 keep_above(vec3 ns, vec3 r) {
     return t * (s / t_length) + r * keep_above_cos;
 }
 
+vec3 face_viewer(vec3 ns, vec3 ng, vec3 wo) {
+    const float a = dot3(ns, wo);
+    if (a >= keep_above_cos) return ns;
+    const float b = dot3(ng, wo);
+    const float lambda = b > keep_above_cos ? (keep_above_cos - a) / (b - a) : 1.0f;
+    const vec3 m = ns + (ng - ns) * lambda;
+    return m / std::sqrt(dot3(m, m));
+}
+
 }  // namespace raylane

@@ -80,4 +80,11 @@ vec3 normal_from_map(NormalMapMode mode, vec3 texel, vec3 n, vec3 dpdu,
 /// ns . w_o > 0 (numerics.md 13). When ns is opposite to r (or NaN) the result is r.
 vec3 keep_above(vec3 ns, vec3 r);
 
+/// The shading normal ns (unit, above the unit geometric normal ng) turned towards the viewer
+/// (wo, unit, on ng's side): ns itself when ns . wo >= keep_above_cos, otherwise normalize(ns +
+/// lambda (ng - ns)) with lambda chosen so that the unnormalized cosine is keep_above_cos, or ng
+/// itself (lambda = 1) when even ng . wo is below that (numerics.md 13: bend n_s toward n_g until
+/// n_s . w_o is a small positive number). The result stays above ng.
+vec3 face_viewer(vec3 ns, vec3 ng, vec3 wo);
+
 }  // namespace raylane

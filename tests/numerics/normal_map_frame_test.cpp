@@ -127,7 +127,7 @@ std::vector<MapCase> map_cases() {
 vec3 shading_normal(const MapCase& c) {
     vec3 ns = normal_from_map(NormalMapMode::tangent, c.texel, c.n, c.dpdu, glm::mat3(1.0f));
     if (glm::dot(ns, c.ng) < 0.0f) ns = -ns;
-    return keep_above(ns, c.ng);
+    return face_viewer(keep_above(ns, c.ng), c.ng, -c.view);  // as shade_scalar.cpp
 }
 
 TEST(NormalMapFrame, EightyNineDegreeTexelsGiveUnitNormalsAboveTheSurface) {
@@ -145,11 +145,12 @@ TEST(NormalMapFrame, EightyNineDegreeTexelsGiveUnitNormalsAboveTheSurface) {
         ASSERT_TRUE(std::isfinite(ns.x + ns.y + ns.z));
         EXPECT_NEAR(glm::length(dvec3(ns)), 1.0, 1e-6);
         EXPECT_GE(glm::dot(dvec3(ns), dvec3(c.ng)), 0.01 - 1e-6) << "bent above the surface";
-        if (glm::dot(ns, -c.view) <= 0.0f) ++facing_away;
+        if (!(glm::dot(ns, -c.view) > 0.0f)) ++facing_away;
     }
+    EXPECT_EQ(facing_away, 0) << "shading normals facing away from the viewer (n_s . w_o <= 0)";
     std::printf(
         "89-degree maps at grazing views: %d of %zu shading normals face away from the "
-        "viewer after keep_above\n",
+        "viewer after face_viewer\n",
         facing_away, map_cases().size());
 }
 
@@ -299,7 +300,8 @@ Vec3<W> pack(const std::vector<vec3>& v, size_t i) {
 }
 
 /// No transcendental functions: every lane equals the scalar bit for bit, for the frames near
-/// -z and for the 89-degree shading normals (decode, turn to n_g's side, keep_above).
+/// -z and for the 89-degree shading normals (decode, turn to n_g's side, keep_above,
+/// face_viewer).
 TYPED_TEST(NormalMapFramePacket, FramesAndBentNormalsMatchTheScalarBitForBit) {
     constexpr int W = TypeParam::value;
     const std::vector<vec3> normals = frame_normals();
@@ -321,16 +323,17 @@ TYPED_TEST(NormalMapFramePacket, FramesAndBentNormalsMatchTheScalarBitForBit) {
         }
     }
     const std::vector<MapCase> cases = map_cases();
-    std::vector<vec3> ng, n, dpdu, texel;
+    std::vector<vec3> ng, n, dpdu, texel, view;
     for (const MapCase& c : cases) {
         ng.push_back(c.ng), n.push_back(c.n), dpdu.push_back(c.dpdu), texel.push_back(c.texel);
+        view.push_back(c.view);
     }
     for (size_t i = 0; i < cases.size(); i += W) {
         const Vec3<W> g = pack<W>(ng, i);
         Vec3<W> ns = normal_from_map<W>(NormalMapMode::tangent, pack<W>(texel, i), pack<W>(n, i),
                                         pack<W>(dpdu, i), glm::mat3(1.0f));
         ns = select(dot(ns, g) < vfloat<W>(0.0f), -ns, ns);  // as shade_packet.h
-        ns = keep_above<W>(ns, g);
+        ns = face_viewer<W>(keep_above<W>(ns, g), g, -pack<W>(view, i));
         for (int k = 0; k < W; ++k) {
             const vec3 s = shading_normal(cases[std::min(i + size_t(k), cases.size() - 1)]);
             const vec3 p = lane3(ns, k);

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <random>
 
+#include "image/film.h"
+#include "render/report.h"
 #include "render/sample_sum_packet.h"
 #include "render/sample_sum_scalar.h"
 #include "simd/lanes.h"
@@ -84,6 +86,28 @@ TYPED_TEST(PixelSumPacketTest, GivesEveryLaneTheScalarBits) {
         EXPECT_EQ(std::bit_cast<uint32_t>(get(mean.z, i)), std::bit_cast<uint32_t>(want.z));
         EXPECT_EQ(get(packet.count, i), scalar[i].count);
     }
+}
+
+/// numerics.md §19: the error metrics of a 4K image (3840 x 2160 x 3 values) whose error is the
+/// same everywhere come out as that error to one part in a billion: summing 2.5e7 equal squares
+/// must not drift. The error is the float difference itself, so the expected values are exact.
+TEST(ErrorMetricSum, FourKImageOfConstantErrorIsExactToOnePartInABillion) {
+    Film reference = make_film(3840, 2160), image = make_film(3840, 2160);
+    for (vec3& p : reference.pixels) p = vec3(0.5f, 0.25f, 2.0f);
+    for (vec3& p : image.pixels) p = vec3(0.501f, 0.251f, 2.001f);
+    const ErrorMetrics m = compute_error(image, reference);
+    double mse = 0.0, rel = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        const double d = double(image.pixels[0][c]) - double(reference.pixels[0][c]);
+        const double r = reference.pixels[0][c];
+        mse += d * d / 3.0;
+        rel += d * d / (r * r + relmse_epsilon) / 3.0;
+    }
+    EXPECT_NEAR(m.mse, mse, 1e-9 * mse);
+    EXPECT_NEAR(m.rmse, std::sqrt(mse), 1e-9 * std::sqrt(mse));
+    EXPECT_NEAR(m.relmse, rel, 1e-9 * rel);
+    std::printf("4K constant error: rmse relative error %.3g\n",
+                std::fabs(m.rmse - std::sqrt(mse)) / std::sqrt(mse));
 }
 
 }  // namespace
