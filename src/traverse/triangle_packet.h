@@ -148,11 +148,19 @@ inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, vec3 a, vec3 b
     const vfloat<W> bz = wr.sz * Bkz;
     const vfloat<W> cz = wr.sz * Ckz;
     const vfloat<W> t_scaled = e_a * az + e_b * bz + e_c * cz;
-    // cancellation: t from the plane in double, lane by lane
+    const vfloat<W> det_sign = select(det < zero, vfloat<W>(-1.0f), vfloat<W>(1.0f));
+    const vfloat<W> abs_det = det_sign * det;
+    const vfloat<W> t_signed = det_sign * t_scaled;
+    // cancellation: unless surely outside the interval, t from the plane in double, lane by lane
     const vfloat<W> terms = abs(e_a * az) + abs(e_b * bz) + abs(e_c * cz);
-    const vmask<W> cancel = mask_and(hit, terms > vfloat<W>(2.0f) * abs(t_scaled));
+    vmask<W> cancel = mask_and(hit, terms > vfloat<W>(2.0f) * abs(t_scaled));
     vfloat<W> t_plane = zero;
     if (any(cancel)) {
+        const vfloat<W> slack = terms * vfloat<W>(0x1.0p-10f);
+        const vmask<W> outside =
+            mask_or(t_signed + slack<t_min * abs_det, t_signed - slack> t_max * abs_det);
+        hit = mask_andnot(hit, mask_and(cancel, outside));
+        cancel = mask_andnot(cancel, outside);
         for_each_active(cancel, [&](int i) {
             set(t_plane, i,
                 plane_distance_in_double(vec3(get(wr.org.x, i), get(wr.org.y, i), get(wr.org.z, i)),
@@ -160,9 +168,6 @@ inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, vec3 a, vec3 b
                                          a, b, c));
         });
     }
-    const vfloat<W> det_sign = select(det < zero, vfloat<W>(-1.0f), vfloat<W>(1.0f));
-    const vfloat<W> abs_det = det_sign * det;
-    const vfloat<W> t_signed = det_sign * t_scaled;
     const vmask<W> in_scaled = mask_and(t_signed > t_min * abs_det, t_signed < t_max * abs_det);
     hit = mask_or(cancel, mask_and(mask_andnot(hit, cancel), in_scaled));
     if (none(hit)) return hit;

@@ -133,13 +133,21 @@ inline bool intersect_triangle(const WatertightRayOf<T>& wr, Vec3Of<T> a, Vec3Of
     const T bz = wr.sz * B[wr.kz];
     const T cz = wr.sz * C[wr.kz];
     const T t_scaled = e_a * az + e_b * bz + e_c * cz;
+    const T det_sign = std::copysign(T(1), det);
+    const T abs_det = det_sign * det;
+    const T t_signed = det_sign * t_scaled;
     if constexpr (std::is_same_v<T, float>) {
         // cancellation: the origin lies between the vertices' depths (a surface close to the
-        // origin, far vertices), so t_scaled is a small difference of large terms and may be
+        // origin, far vertices), so t_scaled is a small difference of larger terms and may be
         // hundreds of ulps off; two coplanar triangles would then disagree on t, and the
-        // tie-break with them. t from the plane in double instead (numerics.md section 2).
+        // tie-break with them. Unless t is surely outside the interval (t_scaled is within
+        // 2^-10 of the terms of its exact value, a wide margin over a few roundings), t comes
+        // from the plane in double (numerics.md section 2).
         const float terms = std::fabs(e_a * az) + std::fabs(e_b * bz) + std::fabs(e_c * cz);
         if (terms > 2.0f * std::fabs(t_scaled)) {
+            const float slack = terms * 0x1.0p-10f;
+            if (t_signed + slack < t_min * abs_det || t_signed - slack > t_max * abs_det)
+                return false;
             const float t_plane = plane_distance_in_double(wr.org, wr.dir, a, b, c);
             if (!(t_plane > t_min && t_plane < t_max)) return false;
             t = t_plane;
@@ -148,9 +156,6 @@ inline bool intersect_triangle(const WatertightRayOf<T>& wr, Vec3Of<T> a, Vec3Of
             return true;
         }
     }
-    const T det_sign = std::copysign(T(1), det);
-    const T abs_det = det_sign * det;
-    const T t_signed = det_sign * t_scaled;
     if (!(t_signed > t_min * abs_det && t_signed < t_max * abs_det)) return false;
 
     // divide: only now, and re-check so rounding cannot leave the open interval
