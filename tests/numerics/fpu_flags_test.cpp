@@ -1,6 +1,7 @@
 // numerics.md §0.2: flush-to-zero and denormals-are-zero are on wherever test code computes,
-// the oneTBB workers of the tests' own parallel loops included (tests/support/test_main.cpp),
-// so that oracles and the code they check see denormals the same way the renderer does.
+// the oneTBB workers of the tests' own parallel loops included (tests/support/test_main.cpp sets
+// them before oneTBB starts; workers inherit them), so that oracles and the code they check see
+// denormals the same way the renderer does.
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 #include <xmmintrin.h>
