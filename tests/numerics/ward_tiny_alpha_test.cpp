@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "numerics/chi_square.h"
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
@@ -24,6 +25,7 @@ namespace raylane {
 namespace {
 
 constexpr double pi_d = 3.14159265358979323846;
+using chi_square::chi2_p_value;
 using dvec2 = glm::dvec2;
 using dvec3 = glm::dvec3;
 const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -262,35 +264,6 @@ TEST(WardTinyAlpha, SamplesTheMirrorDirectionAtTheThreshold) {
 
 // ---- chi-square in lobe coordinates ---------------------------------------------------------
 
-/// Regularised upper incomplete gamma Q(a, x) (Press et al., "Numerical Recipes", 6.2).
-double gamma_q(double a, double x) {
-    if (x <= 0) return 1.0;
-    const double front = std::exp(-x + a * std::log(x) - std::lgamma(a));
-    if (x < a + 1) {
-        double term = 1.0 / a, sum = term;
-        for (int n = 1; n < 10000 && term > sum * 1e-16; ++n) {
-            term *= x / (a + n);
-            sum += term;
-        }
-        return 1.0 - sum * front;
-    }
-    const double tiny = 1e-300;
-    double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
-    for (int i = 1; i < 10000; ++i) {
-        const double an = -i * (i - a);
-        b += 2;
-        d = an * d + b;
-        d = std::fabs(d) < tiny ? tiny : d;
-        c = b + an / c;
-        c = std::fabs(c) < tiny ? tiny : c;
-        d = 1 / d;
-        const double del = d * c;
-        h *= del;
-        if (std::fabs(del - 1) < 1e-16) break;
-    }
-    return front * h;
-}
-
 struct Frame {
     dvec3 t, b, n;
 };
@@ -393,19 +366,10 @@ void check_ward_chi_square(const std::string& path) {
                         ++counts[size_t(bin_of(local_of(f, wo, alpha, lane3(s.wi, k))))];
                 }
             }
-            double chi2 = 0, pooled_e = 0, pooled_o = 0;
+            std::vector<double> expected(257);
+            for (size_t i = 0; i < 257; ++i) expected[i] = mass[i] * count;
             int used = 0;
-            for (size_t i = 0; i < 257; ++i) {
-                const double e = mass[i] * count;
-                if (e < 5) {
-                    pooled_e += e, pooled_o += counts[i];
-                    continue;
-                }
-                chi2 += (counts[i] - e) * (counts[i] - e) / e, ++used;
-            }
-            if (pooled_e > 0)
-                chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++used;
-            const double p = gamma_q(0.5 * (used - 1), 0.5 * chi2);
+            const double p = chi2_p_value(expected, counts, &used);
             EXPECT_GT(p, 0.01) << what << ": chi-square over " << used << " bins";
             EXPECT_GT(used, 150) << what;
             std::printf("%s: integral of pdf - 1 = %.2e, chi-square p = %.3f (%d bins)\n",
