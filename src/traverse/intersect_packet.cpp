@@ -1,5 +1,7 @@
 // traverse: packet two-level BVH traversal. Mirrors intersect_scalar.cpp: the same steps, W
-// lanes at a time, each lane with its own active flag and interval.
+// lanes at a time, each lane with its own active flag and interval, except that the mesh
+// traversals test both children of a node per step and order them by entry distance (see
+// intersect_mesh_closest); the answers are the same.
 #include "traverse/intersect_packet.h"
 
 #include <algorithm>
@@ -103,7 +105,52 @@ vfloat<W> intersect_analytic(const Scene& scene, const Object& object, const Ray
     return vfloat<W>(infinity);
 }
 
-// mesh: closest hit over one mesh's BVH, near child first by the first active lane's signs.
+/// The slab test (slab_packet.h) of W rays against both children of a node. Flattened so that
+/// both tests are inlined and their independent dependency chains interleave.
+template <int W>
+[[gnu::flatten]] inline void intersect_children(const SlabPacket<W>& sr, const BvhNode& first,
+                                                const BvhNode& second, const vfloat<W>& t_min,
+                                                const vfloat<W>& t_max, vfloat<W>& near_first,
+                                                vmask<W>& hit_first, vfloat<W>& near_second,
+                                                vmask<W>& hit_second, vmask<W> lanes) {
+    hit_first = intersect_slab(sr, vec3(first.lo[0], first.lo[1], first.lo[2]),
+                               vec3(first.hi[0], first.hi[1], first.hi[2]), t_min, t_max,
+                               near_first, lanes);
+    hit_second = intersect_slab(sr, vec3(second.lo[0], second.lo[1], second.lo[2]),
+                                vec3(second.hi[0], second.hi[1], second.hi[2]), t_min, t_max,
+                                near_second, lanes);
+}
+
+/// Whether to visit a node's second child before its first when a packet touches both: when it
+/// is the nearer one (by entry distance) for more of the lanes that touch both; on a tie, when
+/// the first active lane's direction is negative along the split axis.
+template <int W>
+bool second_child_first(const BvhNode& node, const int* dir_neg, const vfloat<W>& near_first,
+                        vmask<W> hit_first, const vfloat<W>& near_second, vmask<W> hit_second) {
+    const vmask<W> both = mask_and(hit_first, hit_second);
+    const int second_nearer = count(mask_and(both, near_second < near_first));
+    const int first_nearer = count(mask_and(both, near_first < near_second));
+    if (second_nearer != first_nearer) return second_nearer > first_nearer;
+    return dir_neg[node.axis] != 0;
+}
+
+/// A node waiting on the closest-hit stack: the lanes whose slab test passed when it was pushed,
+/// with their entry distances (128 bytes at W = 16).
+template <int W>
+struct ClosestEntry {
+    vfloat<W> t_near;
+    vmask<W> lanes;
+    uint32_t node;
+};
+
+// mesh: closest hit over one mesh's BVH. Unlike intersect_scalar.cpp, which tests one node per
+// step, both children of a node are tested at once and the one nearer for more lanes (by the
+// signs for coherent packets) is visited first; the other is pushed with its lanes' entry
+// distances. When popped, its lanes are those whose entry is still within the current limit: the
+// slab test's own answer (the exit distances are unchanged and the limit only shrinks), without
+// testing the box again. The order only decides how soon the limit shrinks; every node that may
+// hold a better hit for a lane is still visited by that lane, so the answers are the scalar
+// path's.
 template <int W>
 void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPacket<W>& rays,
                             vmask<W> active, HitPacket<W>& hit, vint<W>* nodes_visited) {
@@ -113,81 +160,155 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPac
     const int lane = first_active(active);
     const int dir_neg[3] = {get(rays.dir.x, lane) < 0.0f, get(rays.dir.y, lane) < 0.0f,
                             get(rays.dir.z, lane) < 0.0f};
-    uint32_t stack[stack_size];
+    // coherent: every active lane has the first one's direction signs, so the order by signs is
+    // the near-first order of every lane and the entry distances need not be compared
+    const uint32_t act = bits(active);
+    auto same_sign = [act](const vfloat<W>& d) {
+        const uint32_t neg = bits(d < vfloat<W>(0.0f)) & act;
+        return neg == 0 || neg == act;
+    };
+    const bool coherent = same_sign(rays.dir.x) && same_sign(rays.dir.y) && same_sign(rays.dir.z);
+    const BvhNode* nodes = mesh.bvh.nodes.data();
+    auto count_tests = [&](int n) {
+        if (nodes_visited)
+            *nodes_visited = select(active, *nodes_visited + vint<W>(n), *nodes_visited);
+    };
+    vfloat<W> limit = t_limit(rays, hit);
+    count_tests(1);
+    vfloat<W> t_root;
+    const vec3 root_lo(nodes[0].lo[0], nodes[0].lo[1], nodes[0].lo[2]);
+    const vec3 root_hi(nodes[0].hi[0], nodes[0].hi[1], nodes[0].hi[2]);
+    vmask<W> m = intersect_slab(sr, root_lo, root_hi, rays.t_min, limit, t_root, active);
+    ClosestEntry<W> stack[stack_size];
     int top = 0;
     uint32_t node_index = 0;
-    vfloat<W> limit = t_limit(rays, hit);
-    for (;;) {
-        const BvhNode& node = mesh.bvh.nodes[node_index];
-        if (nodes_visited)
-            *nodes_visited = select(active, *nodes_visited + vint<W>(1), *nodes_visited);
-        vfloat<W> t_near;
-        const vec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
-        const vmask<W> m = intersect_slab(sr, lo, hi, rays.t_min, limit, t_near, active);
-        if (any(m)) {
-            if (node.is_leaf()) {
-                for (uint32_t k = node.index; k < node.index + node.count; ++k) {
-                    const TriangleVerts& tv = mesh.verts[k];
-                    vfloat<W> t(infinity), u(0.0f), v(0.0f);
-                    const vmask<W> h =
-                        intersect_triangle(wr, tv.a, tv.b, tv.c, rays.t_min, limit, t, u, v, m);
-                    if (any(h)) {
-                        const uint32_t prim = mesh.bvh.prim_ids[k];
-                        const vmask<W> win = better(t, object, prim, hit, h);
-                        record(hit, win, t, object, prim, u, v);
-                        limit = t_limit(rays, hit);
-                    }
+    while (any(m)) {  // m: the lanes that touch node_index's box
+        const BvhNode& node = nodes[node_index];
+        if (node.is_leaf()) {
+            // leaf
+            for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+                const TriangleVerts& tv = mesh.verts[k];
+                vfloat<W> t(infinity), u(0.0f), v(0.0f);
+                const vmask<W> h =
+                    intersect_triangle(wr, tv.a, tv.b, tv.c, rays.t_min, limit, t, u, v, m);
+                if (any(h)) {
+                    const uint32_t prim = mesh.bvh.prim_ids[k];
+                    const vmask<W> win = better(t, object, prim, hit, h);
+                    record(hit, win, t, object, prim, u, v);
+                    limit = t_limit(rays, hit);
                 }
-            } else if (dir_neg[node.axis]) {
-                stack[top++] = node_index + 1;
-                node_index = node.index;
+            }
+        } else {
+            // children: nearer first, the other pushed
+            const uint32_t first = node_index + 1, second = node.index;
+            vfloat<W> near_first, near_second;
+            vmask<W> hit_first, hit_second;
+            count_tests(2);
+            intersect_children(sr, nodes[first], nodes[second], rays.t_min, limit, near_first,
+                               hit_first, near_second, hit_second, m);
+            const bool any_first = any(hit_first), any_second = any(hit_second);
+            if (any_first && any_second) {
+                const bool second_first =
+                    coherent ? dir_neg[node.axis] != 0
+                             : second_child_first<W>(node, dir_neg, near_first, hit_first,
+                                                     near_second, hit_second);
+                if (second_first) {
+                    stack[top++] = {near_first, hit_first, first};
+                    node_index = second;
+                    m = hit_second;
+                } else {
+                    stack[top++] = {near_second, hit_second, second};
+                    node_index = first;
+                    m = hit_first;
+                }
                 continue;
-            } else {
-                stack[top++] = node.index;
-                node_index = node_index + 1;
+            }
+            if (any_first || any_second) {
+                node_index = any_first ? first : second;
+                m = any_first ? hit_first : hit_second;
                 continue;
             }
         }
-        if (top == 0) break;
-        node_index = stack[--top];
+        // pop the next node that a lane still reaches within its limit
+        m = mask_and(active, mask_not(active));
+        while (top > 0 && none(m)) {
+            const ClosestEntry<W>& e = stack[--top];
+            m = mask_and(e.lanes, e.t_near <= limit);
+            node_index = e.node;
+        }
     }
 }
 
+// mesh: any hit. Both children of a node are tested at once, the one nearer along the split axis
+// for the first active lane is visited first, the other pushed with its lanes (as bits); t_max
+// does not change, so when popped its lanes are those that have not found a hit yet.
 template <int W>
 vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vmask<W> active) {
-    if (mesh.bvh.nodes.empty()) return mask_and(active, mask_not(active));
+    vmask<W> found = mask_and(active, mask_not(active));
+    if (mesh.bvh.nodes.empty()) return found;
     const WatertightPacket<W> wr = make_watertight_ray(rays, active);
     const SlabPacket<W> sr = make_slab_ray(rays);
-    vmask<W> found = mask_and(active, mask_not(active));
-    vmask<W> open = active;  // lanes still looking
-    uint32_t stack[stack_size];
+    const int lane = first_active(active);
+    const int dir_neg[3] = {get(rays.dir.x, lane) < 0.0f, get(rays.dir.y, lane) < 0.0f,
+                            get(rays.dir.z, lane) < 0.0f};
+    const BvhNode* nodes = mesh.bvh.nodes.data();
+    vfloat<W> t_root;
+    const vec3 root_lo(nodes[0].lo[0], nodes[0].lo[1], nodes[0].lo[2]);
+    const vec3 root_hi(nodes[0].hi[0], nodes[0].hi[1], nodes[0].hi[2]);
+    vmask<W> m = intersect_slab(sr, root_lo, root_hi, rays.t_min, rays.t_max, t_root, active);
+    struct Entry {
+        uint32_t node;
+        uint32_t lanes;
+    };
+    Entry stack[stack_size];
     int top = 0;
     uint32_t node_index = 0;
-    for (;;) {
-        const BvhNode& node = mesh.bvh.nodes[node_index];
-        vfloat<W> t_near;
-        const vec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
-        const vmask<W> m = intersect_slab(sr, lo, hi, rays.t_min, rays.t_max, t_near, open);
-        if (any(m)) {
-            if (node.is_leaf()) {
-                for (uint32_t k = node.index; k < node.index + node.count; ++k) {
-                    const TriangleVerts& tv = mesh.verts[k];
-                    vfloat<W> t(infinity), u(0.0f), v(0.0f);
-                    const vmask<W> h =
-                        intersect_triangle(wr, tv.a, tv.b, tv.c, rays.t_min, rays.t_max, t, u, v,
-                                           mask_andnot(m, found));
-                    found = mask_or(found, h);
+    while (any(m)) {  // m: the lanes that touch node_index's box and have not found a hit
+        const BvhNode& node = nodes[node_index];
+        if (node.is_leaf()) {
+            // leaf
+            for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+                const vmask<W> lanes = mask_andnot(m, found);
+                if (none(lanes)) break;
+                const TriangleVerts& tv = mesh.verts[k];
+                vfloat<W> t(infinity), u(0.0f), v(0.0f);
+                found = mask_or(found, intersect_triangle(wr, tv.a, tv.b, tv.c, rays.t_min,
+                                                          rays.t_max, t, u, v, lanes));
+            }
+            if (none(mask_andnot(active, found))) return found;
+        } else {
+            // children: nearer first, the other pushed
+            const uint32_t first = node_index + 1, second = node.index;
+            vfloat<W> near_first, near_second;
+            vmask<W> hit_first, hit_second;
+            intersect_children(sr, nodes[first], nodes[second], rays.t_min, rays.t_max, near_first,
+                               hit_first, near_second, hit_second, m);
+            const bool any_first = any(hit_first), any_second = any(hit_second);
+            if (any_first && any_second) {
+                if (dir_neg[node.axis]) {
+                    stack[top++] = {first, bits(hit_first)};
+                    node_index = second;
+                    m = hit_second;
+                } else {
+                    stack[top++] = {second, bits(hit_second)};
+                    node_index = first;
+                    m = hit_first;
                 }
-                open = mask_andnot(active, found);
-                if (none(open)) return found;
-            } else {
-                stack[top++] = node.index;
-                node_index = node_index + 1;
+                continue;
+            }
+            if (any_first || any_second) {
+                node_index = any_first ? first : second;
+                m = any_first ? hit_first : hit_second;
                 continue;
             }
         }
-        if (top == 0) break;
-        node_index = stack[--top];
+        // pop the next node that an open lane still touches
+        m = mask_and(active, mask_not(active));
+        while (top > 0 && none(m)) {
+            const Entry& e = stack[--top];
+            m = mask_andnot(mask_from_bits<W>(e.lanes), found);
+            node_index = e.node;
+        }
     }
     return found;
 }
