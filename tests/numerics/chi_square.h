@@ -1,8 +1,10 @@
 // The chi-square test of the numerics suite's sampler tests (phong_exponent_test.cpp,
-// ward_tiny_alpha_test.cpp): Pearson's statistic with small bins pooled, and its p-value.
+// ward_tiny_alpha_test.cpp): Pearson's statistic with small bins pooled, its p-value, and the
+// frame in which the samples are binned.
 #pragma once
 
 #include <cmath>
+#include <glm/glm.hpp>
 #include <vector>
 
 namespace raylane::chi_square {
@@ -52,6 +54,19 @@ inline double chi2_p_value(const std::vector<double>& expected, const std::vecto
     if (pooled_e > 0) chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++bins;
     *bins_used = bins;
     return gamma_q(0.5 * (bins - 1), 0.5 * chi2);
+}
+
+/// An orthonormal frame around unit a by Gram-Schmidt in double (independent of Raylane's).
+struct Frame {
+    glm::dvec3 t, b, n;
+};
+inline Frame frame_of(glm::vec3 a) {
+    Frame f;
+    f.n = glm::normalize(glm::dvec3(a));
+    const glm::dvec3 g = std::fabs(f.n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    f.t = glm::normalize(g - f.n * glm::dot(g, f.n));
+    f.b = glm::cross(f.n, f.t);
+    return f;
 }
 
 }  // namespace raylane::chi_square

@@ -35,6 +35,8 @@ constexpr int sample_scale = 1;
 
 constexpr double pi_d = 3.14159265358979323846;
 using chi_square::chi2_p_value;
+using chi_square::Frame;
+using chi_square::frame_of;
 using chi_square::gamma_q;
 using dvec2 = glm::dvec2;
 using dvec3 = glm::dvec3;
@@ -68,19 +70,6 @@ std::string name(const LobeCase& c) {
     std::snprintf(buf, sizeof buf, "%s e = %g", c.lobe == Lobe::phong ? "Phong" : "Blinn-Phong",
                   double(c.e));
     return buf;
-}
-
-/// An orthonormal frame around unit a by Gram-Schmidt in double (independent of Raylane's).
-struct Frame {
-    dvec3 t, b, n;
-};
-Frame frame_of(vec3 a) {
-    Frame f;
-    f.n = glm::normalize(dvec3(a));
-    const dvec3 g = std::fabs(f.n.x) < 0.6 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
-    f.t = glm::normalize(g - f.n * glm::dot(g, f.n));
-    f.b = glm::cross(f.n, f.t);
-    return f;
 }
 
 /// Lobe coordinates of a sampled direction, scaled by sqrt(e) so the lobe is a unit Gaussian at

@@ -26,6 +26,8 @@ namespace {
 
 constexpr double pi_d = 3.14159265358979323846;
 using chi_square::chi2_p_value;
+using chi_square::Frame;
+using chi_square::frame_of;
 using dvec2 = glm::dvec2;
 using dvec3 = glm::dvec3;
 const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -263,18 +265,6 @@ TEST(WardTinyAlpha, SamplesTheMirrorDirectionAtTheThreshold) {
 }
 
 // ---- chi-square in lobe coordinates ---------------------------------------------------------
-
-struct Frame {
-    dvec3 t, b, n;
-};
-Frame frame_of(vec3 a) {
-    Frame f;
-    f.n = glm::normalize(dvec3(a));
-    const dvec3 g = std::fabs(f.n.x) < 0.6 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
-    f.t = glm::normalize(g - f.n * glm::dot(g, f.n));
-    f.b = glm::cross(f.n, f.t);
-    return f;
-}
 
 /// Lobe coordinates: the half vector's tangent components divided by alpha, in which the
 /// sampled density is (1 / pi) exp(-x^2 - y^2) at every alpha.
