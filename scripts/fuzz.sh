@@ -1,9 +1,15 @@
 #!/usr/bin/env bash
 # Fuzzing (issue #5): builds the fuzz preset (clang, libFuzzer + ASan + UBSan) and runs every
-# tests/fuzz/fuzz_<name> program for SECONDS_PER_TARGET seconds (default 30), starting from a copy
-# of tests/fuzz/corpus/<name>/ after replaying tests/fuzz/regressions/<name>/.
+# tests/fuzz/fuzz_<name> program, starting from a copy of tests/fuzz/corpus/<name>/ after
+# replaying tests/fuzz/regressions/<name>/.
 #
-#   scripts/fuzz.sh [SECONDS_PER_TARGET]
+#   scripts/fuzz.sh [SECONDS_PER_TARGET]   explore: a random seed, SECONDS each (default 30)
+#   scripts/fuzz.sh ci                     repeatable: seed 1 and a fixed number of inputs per
+#                                          target (about 20 s each here), what .ci/run runs
+#
+# The ci mode gives the same inputs on every run, so a commit's CI result does not depend on
+# luck; exploring with random seeds (and longer) is how new findings are made, and each one
+# goes into regressions/ where every run replays it.
 #
 # Exits 1 on any finding (crash, sanitizer report, leak, timeout, out-of-memory, an exception
 # other than InputError, bad data returned by a reader) and prints the path of the saved input;
@@ -11,8 +17,15 @@
 # Environment: FUZZ_CXX (compiler, default the preset's clang++-14), FUZZ_JOBS (build jobs),
 # FUZZ_WORK (where corpora, logs and findings go; default a new temporary folder, kept).
 set -euo pipefail
-seconds="${1:-30}"
-[[ "$seconds" =~ ^[0-9]+$ ]] || { echo "usage: $0 [SECONDS_PER_TARGET]" >&2; exit 2; }
+mode="${1:-30}"
+if [ "$mode" = ci ]; then
+    seconds=""
+elif [[ "$mode" =~ ^[0-9]+$ ]]; then
+    seconds="$mode"
+else
+    echo "usage: $0 [SECONDS_PER_TARGET | ci]" >&2
+    exit 2
+fi
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
 bash scripts/setup.sh
@@ -35,6 +48,17 @@ max_len_for() {
         ply) echo 8192 ;;
         image) echo 32768 ;;
         *) echo 8192 ;;
+    esac
+}
+
+# Inputs per target in ci mode: about 20 s each at the rates of a quiet run on the CI machine.
+runs_for() {
+    case "$1" in
+        scene) echo 250000 ;;
+        obj) echo 1000000 ;;
+        ply) echo 1000000 ;;
+        image) echo 300000 ;;
+        *) echo 200000 ;;
     esac
 }
 
@@ -69,12 +93,18 @@ for program in "${programs[@]}"; do
         fi
     done
 
-    echo "== fuzz_$name: ${seconds} s" >&2
+    if [ -n "$seconds" ]; then
+        budget=(-max_total_time="$seconds")
+        echo "== fuzz_$name: ${seconds} s, random seed" >&2
+    else
+        budget=(-runs="$(runs_for "$name")" -seed=1)
+        echo "== fuzz_$name: ${budget[0]#-runs=} inputs, seed 1" >&2
+    fi
     corpus="$work/corpus-$name"
     mkdir -p "$corpus"
     [ -d "$root/tests/fuzz/corpus/$name" ] && cp -r "$root/tests/fuzz/corpus/$name/." "$corpus/"
     log="$work/$name.log"
-    if "$program" "${flags[@]}" -max_total_time="$seconds" "$corpus" >"$log" 2>&1; then
+    if "$program" "${flags[@]}" "${budget[@]}" "$corpus" >"$log" 2>&1; then
         grep -E '^stat::number_of_executed_units|^stat::average_exec_per_sec|^#[0-9]+ +DONE' "$log" \
             | tr '\n' ' ' >&2 || true
         echo >&2

@@ -10,52 +10,7 @@
 
 #include "core/error.h"
 #include "io/read_file.h"
-
-namespace raylane {
-namespace {
-
-/// The largest single allocation stb_image may make on this thread (bytes). Small outside a
-/// decode (the header probes need a few KiB); set from the image size around each decode.
-thread_local size_t stb_allocation_limit = size_t{1} << 20;
-
-void* stb_malloc(size_t bytes) {
-    return bytes > stb_allocation_limit ? nullptr : std::malloc(bytes);
-}
-void* stb_realloc(void* p, size_t bytes) {
-    return bytes > stb_allocation_limit ? nullptr : std::realloc(p, bytes);
-}
-void stb_free(void* p) { std::free(p); }
-
-}  // namespace
-}  // namespace raylane
-
-// stb_image (Sean Barrett, public domain), static to this file so no other translation unit's
-// copy can clash. Only the three formats Raylane reads: TGA has no signature and would accept
-// almost any bytes, and every decoder left out is attack surface gone.
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
-#define STBI_ONLY_HDR
-#define STBI_NO_STDIO
-#define STBI_FAILURE_USERMSG
-#define STBI_MALLOC(bytes) raylane::stb_malloc(bytes)
-#define STBI_REALLOC(p, bytes) raylane::stb_realloc(p, bytes)
-#define STBI_FREE(p) raylane::stb_free(p)
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wduplicated-branches"
-#endif
-#include <stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+#include "io/stb_image.h"
 
 namespace raylane {
 namespace {

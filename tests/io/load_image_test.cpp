@@ -460,6 +460,47 @@ TEST(LoadTexture, RejectsTruncatedAndCorruptJpegs) {
     expect_memory_error(scan, "Huffman table that was not defined");
 }
 
+/// A 16x8 grey baseline JPEG whose two blocks both have the largest negative DC difference,
+/// under a 16-bit quantiser of 48830: the DC predictor reaches -65534 and -65534 * 48830
+/// overflows int in stb_image 2.27 (found by fuzz_image; tests/fuzz/regressions/image).
+std::string jpeg_with_overflowing_dc() {
+    auto segment = [](uint8_t marker, const std::string& payload) {
+        const size_t length = payload.size() + 2;
+        return std::string{'\xff', static_cast<char>(marker), static_cast<char>(length >> 8),
+                           static_cast<char>(length & 0xff)} +
+               payload;
+    };
+    std::string quantiser(1, '\x10');                                             // 16-bit table 0
+    for (int i = 0; i < 64; ++i) quantiser += "\xbe\xbe";                         // 48830
+    const std::string one_code = std::string(1, '\x01') + std::string(15, '\0');  // one code, '0'
+    std::string jpeg = "\xff\xd8";
+    jpeg += segment(0xdb, quantiser);
+    jpeg += segment(0xc0, std::string("\x08\x00\x08\x00\x10\x01\x01\x11\x00", 9));
+    jpeg += segment(0xc4, std::string(1, '\x00') + one_code + '\x0f');  // DC: '0' -> category 15
+    jpeg += segment(0xc4, std::string(1, '\x10') + one_code + '\x00');  // AC: '0' -> end of block
+    jpeg += segment(0xda, std::string("\x01\x01\x00\x00\x3f\x00", 6));
+    // per block: DC code '0', 15 zero bits (difference -32767), AC code '0'; 34 bits, padded
+    jpeg += std::string("\x00\x00\x00\x00\x3f", 5);
+    return jpeg + "\xff\xd9";
+}
+
+TEST(LoadTexture, DecodesAJpegWhoseDcOverflowsIntWithDefinedBehaviour) {
+    // io/stb_image.cpp is compiled with -fwrapv, so the overflow wraps and the result is an
+    // ordinary texture. The undefined behaviour itself is seen by clang's UBSan only (GCC
+    // narrows the multiplication to 16 bits first): scripts/fuzz.sh replays these bytes.
+    const std::string jpeg = jpeg_with_overflowing_dc();
+    EXPECT_EQ(jpeg,
+              read_file(std::string(RAYLANE_SOURCE_DIR) +
+                        "/tests/fuzz/regressions/image/jpeg_dc_times_quantiser_overflows_int"));
+    const Texture texture = load_texture_from_memory(jpeg, "overflow.jpg");
+    EXPECT_EQ(texture.width, 16);
+    EXPECT_EQ(texture.height, 8);
+    ASSERT_EQ(texture.texels.size(), size_t{16 * 8 * 3});
+    for (float texel : texture.texels) {
+        EXPECT_TRUE(texel >= 0.0f && texel <= 1.0f) << texel;
+    }
+}
+
 TEST(LoadTexture, RejectsTruncatedAndCorruptHdrsWithoutHanging) {
     const std::string real = read_file(shared_dir + "/textures/env/venice_sunset_1k.hdr");
     for (size_t keep : {real.size() / 2, real.size() - 1}) {
