@@ -590,24 +590,44 @@ struct BlockBounds {
 template <int W>
 BlockBounds make_block_bounds(const RayPacket<W>* rays, const SlabPacket<W>* sr,
                               const vmask<W>* active, int count) {
+    // Lane-wise minima and maxima over the packets first, one horizontal reduction per bound at
+    // the end: the same set of active, non-NaN lanes as hmin/hmax per packet, 13 reductions per
+    // block instead of 13 per packet.
+    const vfloat<W> inf(infinity), neg_inf(-infinity);
+    vfloat<W> t_min = inf, org_lo[3] = {inf, inf, inf}, org_hi[3] = {neg_inf, neg_inf, neg_inf};
+    vfloat<W> inv_lo[3] = {inf, inf, inf}, inv_hi[3] = {neg_inf, neg_inf, neg_inf};
     BlockBounds b;
     bool seen = false;
     for (int p = 0; p < count; ++p) {
         if (none(active[p])) continue;
-        b.t_min = std::min(b.t_min, hmin(rays[p].t_min, active[p]));
+        const vmask<W> m = active[p];
+        auto lo = [&](vfloat<W>& acc, const vfloat<W>& x) {
+            acc = min(acc, select(mask_andnot(m, is_nan(x)), x, inf));
+        };
+        auto hi = [&](vfloat<W>& acc, const vfloat<W>& x) {
+            acc = max(acc, select(mask_andnot(m, is_nan(x)), x, neg_inf));
+        };
+        lo(t_min, rays[p].t_min);
         const vfloat<W>* org[3] = {&sr[p].org.x, &sr[p].org.y, &sr[p].org.z};
         const vfloat<W>* inv[3] = {&sr[p].inv_dir.x, &sr[p].inv_dir.y, &sr[p].inv_dir.z};
         for (int k = 0; k < 3; ++k) {
-            b.org_lo[k] = std::min(b.org_lo[k], hmin(*org[k], active[p]));
-            b.org_hi[k] = std::max(b.org_hi[k], hmax(*org[k], active[p]));
-            b.inv_lo[k] = std::min(b.inv_lo[k], hmin(*inv[k], active[p]));
-            b.inv_hi[k] = std::max(b.inv_hi[k], hmax(*inv[k], active[p]));
+            lo(org_lo[k], *org[k]);
+            hi(org_hi[k], *org[k]);
+            lo(inv_lo[k], *inv[k]);
+            hi(inv_hi[k], *inv[k]);
         }
         if (!seen) {
-            const int lane = first_active(active[p]);
+            const int lane = first_active(m);
             for (int k = 0; k < 3; ++k) b.dir_neg[k] = get(*inv[k], lane) < 0.0f;
             seen = true;
         }
+    }
+    b.t_min = hmin(t_min);
+    for (int k = 0; k < 3; ++k) {
+        b.org_lo[k] = hmin(org_lo[k]);
+        b.org_hi[k] = hmax(org_hi[k]);
+        b.inv_lo[k] = hmin(inv_lo[k]);
+        b.inv_hi[k] = hmax(inv_hi[k]);
     }
     for (int k = 0; k < 3; ++k) {
         const bool finite = std::isfinite(b.inv_lo[k]) && std::isfinite(b.inv_hi[k]) &&
