@@ -686,10 +686,12 @@ void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&&
             }
         }
         if (touched) {
-            const int l = e.last - 1;  // leaves test each packet of [f, l] anyway
+            int l = e.last - 1;  // leaves test each packet of [f, l] anyway
             if (node.is_leaf()) {
                 leaf(node, f, l);
             } else {
+                // last packet that touches the node: the children need not look past it
+                while (l > f && !any(test(l, node))) --l;
                 const uint16_t f16 = static_cast<uint16_t>(f), l16 = static_cast<uint16_t>(l + 1);
                 if (bounds.dir_neg[node.axis]) {
                     stack[top++] = {e.node + 1, f16, l16};
