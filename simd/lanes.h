@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "simd/simd.h"
 
@@ -20,12 +21,34 @@ inline vint<W> lane_index() {
     return load_aligned<W>(lanes);
 }
 
-/// Value of lane i (0 <= i < W). Slow (goes through memory): for tests and scalar fallbacks.
+/// Value of lane i (0 <= i < W). 16- and 8-wide float and int lanes move to lane 0 by a
+/// permute in registers (xsimd's batch::get stores the whole register and loads one lane back,
+/// which stalls store forwarding when a loop over the lanes repeats it); other types and the
+/// 4-wide packets go through memory. (The maskz forms with every lane set: GCC 12 warns that
+/// the plain AVX-512 permutes read an undefined register.)
 inline float get(float v, int) { return v; }
 inline int32_t get(int32_t v, int) { return v; }
 inline bool get(bool v, int) { return v; }
 template <class T, class A>
 inline T get(const xsimd::batch<T, A>& v, int i) {
+    constexpr bool f32 = std::is_same_v<T, float>, i32 = std::is_same_v<T, int32_t>;
+    constexpr std::size_t w = xsimd::batch<T, A>::size;
+#if defined(__AVX512F__)
+    if constexpr (w == 16 && f32) {
+        return _mm512_cvtss_f32(_mm512_maskz_permutexvar_ps(0xffff, _mm512_set1_epi32(i), v));
+    } else if constexpr (w == 16 && i32) {  // the bits moved as a float's, unchanged
+        const __m512 bits = _mm512_castsi512_ps(v);
+        return std::bit_cast<int32_t>(
+            _mm512_cvtss_f32(_mm512_maskz_permutexvar_ps(0xffff, _mm512_set1_epi32(i), bits)));
+    }
+#endif
+#if defined(__AVX2__)
+    if constexpr (w == 8 && f32) {
+        return _mm256_cvtss_f32(_mm256_permutevar8x32_ps(v, _mm256_set1_epi32(i)));
+    } else if constexpr (w == 8 && i32) {
+        return _mm256_cvtsi256_si32(_mm256_permutevar8x32_epi32(v, _mm256_set1_epi32(i)));
+    }
+#endif
     return v.get(static_cast<std::size_t>(i));
 }
 template <class T, class A>
