@@ -31,8 +31,9 @@ inline int32_t get(int32_t v, int) { return v; }
 inline bool get(bool v, int) { return v; }
 template <class T, class A>
 inline T get(const xsimd::batch<T, A>& v, int i) {
-    constexpr bool f32 = std::is_same_v<T, float>, i32 = std::is_same_v<T, int32_t>;
-    constexpr std::size_t w = xsimd::batch<T, A>::size;
+    [[maybe_unused]] constexpr bool f32 = std::is_same_v<T, float>;
+    [[maybe_unused]] constexpr bool i32 = std::is_same_v<T, int32_t>;
+    [[maybe_unused]] constexpr std::size_t w = xsimd::batch<T, A>::size;
 #if defined(__AVX512F__)
     if constexpr (w == 16 && f32) {
         return _mm512_cvtss_f32(_mm512_maskz_permutexvar_ps(0xffff, _mm512_set1_epi32(i), v));
