@@ -207,6 +207,12 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPac
             intersect_children(sr, nodes[first], nodes[second], rays.t_min, limit, near_first,
                                hit_first, near_second, hit_second, m);
             const bool any_first = any(hit_first), any_second = any(hit_second);
+            // the next step tests the children of whichever child goes on: ask for their boxes
+            // now (the second child of a child is far away in the depth-first order)
+            if (any_first && !nodes[first].is_leaf())
+                __builtin_prefetch(&nodes[nodes[first].index]);
+            if (any_second && !nodes[second].is_leaf())
+                __builtin_prefetch(&nodes[nodes[second].index]);
             if (any_first && any_second) {
                 const bool second_first =
                     coherent ? dir_neg[node.axis] != 0
