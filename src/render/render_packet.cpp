@@ -126,7 +126,8 @@ void trace_queue(const Scene& scene, const Accel& accel, const PathQueue& q, boo
 
 /// Traces the shadow queue of one light as blocks and adds the contributions of free segments.
 template <int W>
-void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q, TileBuffers& b) {
+void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q, bool coherent,
+                   TileBuffers& b) {
     constexpr int max_packets = max_block_rays / W;
     RayPacket<W> rays[max_packets];
     vmask<W> active[max_packets], occluded[max_packets];
@@ -142,7 +143,12 @@ void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q,
             rays[p].t_min = vfloat<W>(0.0f);
             rays[p].t_max = select(active[p], load<W>(&q.t_max[i]), vfloat<W>(-1.0f));
         }
-        intersect_any_block(scene, accel, rays, active, occluded, count);
+        if (coherent) {
+            intersect_any_block(scene, accel, rays, active, occluded, count);
+        } else {
+            for (int p = 0; p < count; ++p)
+                occluded[p] = intersect_any(scene, accel, rays[p], active[p]);
+        }
         for (int p = 0; p < count; ++p) {
             for_each_active(mask_andnot(active[p], occluded[p]), [&](int l) {
                 const size_t i = static_cast<size_t>(base + p * W + l);
@@ -166,6 +172,7 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
     bool first = true;
     while (b.paths.size > 0) {
         PathQueue& q = b.paths;
+        const bool camera_pass = first;
         trace_queue<W>(scene, accel, q, first, b.hits);
         first = false;
         if (b.order.size() < static_cast<size_t>(q.size + W)) b.order.resize(q.ox.size());
@@ -219,7 +226,7 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
             begin = end;
         }
         for (size_t j = 0; j < scene.lights.size(); ++j) {
-            trace_shadows<W>(scene, accel, b.shadows[j], b);
+            trace_shadows<W>(scene, accel, b.shadows[j], camera_pass, b);
             b.shadows[j].clear();
         }
         std::swap(b.paths, b.next);
