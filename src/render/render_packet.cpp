@@ -124,7 +124,8 @@ void trace_queue(const Scene& scene, const Accel& accel, const PathQueue& q, boo
     }
 }
 
-/// Traces the shadow queue of one light as blocks and adds the contributions of free segments.
+/// Traces the shadow queue of one light and adds the contributions of free segments: as blocks
+/// after the camera pass (coherent), packet by packet after later passes (scattered hit points).
 template <int W>
 void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q, bool coherent,
                    TileBuffers& b) {
