@@ -87,9 +87,11 @@ inline WatertightPacket<W> make_watertight_ray(const RayPacket<W>& rays, vmask<W
 /// The lanes of `active` that hit triangle (a, b, c) at t in (t_min, t_max); for those lanes t,
 /// u, v are written (others keep their values). Same steps as the scalar test.
 template <int W>
-inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, vec3 a, vec3 b, vec3 c,
-                                   const vfloat<W>& t_min, const vfloat<W>& t_max, vfloat<W>& t,
-                                   vfloat<W>& u, vfloat<W>& v, vmask<W> active) {
+[[gnu::always_inline]] inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, vec3 a,
+                                                          vec3 b, vec3 c, const vfloat<W>& t_min,
+                                                          const vfloat<W>& t_max, vfloat<W>& t,
+                                                          vfloat<W>& u, vfloat<W>& v,
+                                                          vmask<W> active) {
     // translate (vertex components picked by the permutation, then the permuted origin)
     vfloat<W> akx, aky, akz, bkx, bky, bkz, ckx, cky, ckz;
     if (wr.uniform) {
