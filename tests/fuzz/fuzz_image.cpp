@@ -43,7 +43,10 @@ int64_t declared_texels(std::string_view s) {
         const int64_t width = be32(s, 16), height = be32(s, 20);  // each below 2^32
         return height == 0 || width <= INT64_MAX / height ? width * height : INT64_MAX;
     }
-    if (s.substr(0, 2) == "#?") return number_after(s, "-Y ") * number_after(s, "+X ");
+    if (s.substr(0, 2) == "#?") {  // each number below 2^34, the product checked
+        const int64_t height = number_after(s, "-Y "), width = number_after(s, "+X ");
+        return height == 0 || width <= INT64_MAX / height ? width * height : INT64_MAX;
+    }
     if (byte_at(s, 0) != 0xFF) return 0;
     // JPEG: markers up to the first start of frame (SOF0-15 except DHT, JPG and DAC)
     size_t i = 1;
