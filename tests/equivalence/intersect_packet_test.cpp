@@ -14,6 +14,7 @@
 #include "core/offset.h"
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
+#include "support/ray_packets.h"
 #include "support/widths.h"
 #include "traverse/intersect_scalar.h"
 
@@ -110,24 +111,6 @@ RaySets make_ray_sets(const Loaded& l) {
         s.bounce_hits[i] = intersect_closest(l.scene, l.accel, s.bounce[i]);
     });
     return s;
-}
-
-/// Packets of W consecutive rays; the tail packet's spare lanes are inactive and benign.
-template <int W>
-RayPacket<W> make_packet(const std::vector<Ray>& rays, size_t first, vmask<W>& active) {
-    RayPacket<W> p;
-    uint32_t b = 0;
-    for (int i = 0; i < W; ++i) {
-        Ray r;
-        r.t_max = -1.0f;  // benign inactive lane
-        if (first + i < rays.size()) {
-            r = rays[first + i];
-            b |= 1u << i;
-        }
-        set_ray(p, i, r);
-    }
-    active = mask_from_bits<W>(b);
-    return p;
 }
 
 /// Counts lanes whose closest hit differs from the scalar answer (object, primitive or t).

@@ -17,6 +17,7 @@
 #include "core/ray_packet.h"
 #include "scene/scene.h"
 #include "simd/simd.h"
+#include "support/ray_packets.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/triangle_scalar.h"
@@ -174,25 +175,6 @@ inline Hit brute_force_closest(const Scene& scene, const Ray& ray) {
 }
 
 // ---- the packet path ---------------------------------------------------------------------------
-
-/// Packet `first / W` of the ray list: W consecutive rays; spare lanes of the tail packet are
-/// inactive and benign (t_max = -1).
-template <int W>
-RayPacket<W> make_packet(const std::vector<Ray>& rays, size_t first, vmask<W>& active) {
-    RayPacket<W> p;
-    uint32_t b = 0;
-    for (int i = 0; i < W; ++i) {
-        Ray r;
-        r.t_max = -1.0f;
-        if (first + size_t(i) < rays.size()) {
-            r = rays[first + size_t(i)];
-            b |= 1u << i;
-        }
-        set_ray(p, i, r);
-    }
-    active = mask_from_bits<W>(b);
-    return p;
-}
 
 /// intersect_closest of the packet path, W rays at a time, returned ray by ray.
 template <int W>
