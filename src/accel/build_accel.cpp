@@ -17,24 +17,6 @@ Aabb transformed(const Aabb& box, const mat4& m) {
 
 }  // namespace
 
-MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
-    std::vector<Aabb> bounds(mesh.tris.size());
-    for (size_t i = 0; i < mesh.tris.size(); ++i) {
-        const uvec3 t = mesh.tris[i];
-        bounds[i].grow(mesh.positions[t.x]);
-        bounds[i].grow(mesh.positions[t.y]);
-        bounds[i].grow(mesh.positions[t.z]);
-    }
-    MeshAccel accel;
-    accel.bvh = build_bvh_median(bounds, params);
-    accel.verts.resize(mesh.tris.size());
-    for (size_t k = 0; k < accel.verts.size(); ++k) {
-        const uvec3 t = mesh.tris[accel.bvh.prim_ids[k]];
-        accel.verts[k] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
-    }
-    return accel;
-}
-
 Aabb object_bounds(const Scene& scene, const Object& object) {
     Aabb box;
     switch (object.kind) {

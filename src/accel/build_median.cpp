@@ -1,10 +1,14 @@
-// accel: the median-split BVH build (the report's build), flattened depth-first as it goes.
-// The plain std::nth_element form of the same tree is tests/accel/median_reference.h.
+// accel: the median-split BVH build (the report's build), flattened depth-first as it goes, for
+// boxes (build_bvh_median) and for a mesh's triangles (build_mesh_accel). The plain
+// std::nth_element form of the same tree is tests/accel/median_reference.h.
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <bit>
 #include <cassert>
 #include <cstring>
 #include <memory>
+#include <new>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -15,10 +19,55 @@
 namespace raylane {
 namespace {
 
-template <class T>
-std::unique_ptr<T[]> uninitialized(size_t n) {
-    return std::make_unique_for_overwrite<T[]>(n);
-}
+/// One block for all of a build's temporaries, carved in order by take(). A large block is an
+/// anonymous mapping whose pages the kernel faults in with one call (MAP_POPULATE): on this VM
+/// a page costs about 1.0 us that way against 1.4 us touched one by one, and the build's
+/// temporaries are most of the memory it touches (docs/performance.md, "Loading and building").
+/// Unmapped when the build ends, so nothing stays in the heap.
+class TempBlock {
+  public:
+    explicit TempBlock(size_t bytes) : size_(bytes) {
+        if (bytes >= mapped_from) {
+            void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE,
+                           MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
+            if (p == MAP_FAILED) throw std::bad_alloc();
+            base_ = static_cast<std::byte*>(p);
+        } else {
+            base_ = static_cast<std::byte*>(::operator new(bytes, std::align_val_t(64)));
+        }
+    }
+    ~TempBlock() {
+        if (size_ >= mapped_from)
+            munmap(base_, size_);
+        else
+            ::operator delete(base_, std::align_val_t(64));
+    }
+    TempBlock(const TempBlock&) = delete;
+    TempBlock& operator=(const TempBlock&) = delete;
+
+    /// The next n elements of type T, 64-byte aligned (the caller sized the block for them).
+    template <class T>
+    T* take(size_t n) {
+        T* p = reinterpret_cast<T*>(base_ + used_);
+        used_ += (n * sizeof(T) + 63) & ~size_t(63);
+        assert(used_ <= size_);
+        return p;
+    }
+    /// Carving starts again from `mark` (a value of used()): later arrays reuse the memory.
+    size_t used() const { return used_; }
+    void rewind(size_t mark) { used_ = mark; }
+
+    /// Bytes take() uses for n elements of T.
+    template <class T>
+    static size_t bytes_for(size_t n) {
+        return (n * sizeof(T) + 63) & ~size_t(63);
+    }
+
+  private:
+    static constexpr size_t mapped_from = size_t(1) << 20;
+    std::byte* base_ = nullptr;
+    size_t size_ = 0, used_ = 0;
+};
 
 /// A float's bits mapped to an unsigned key with the same order (negatives flipped; -0 sorts
 /// before +0).
@@ -27,26 +76,27 @@ uint32_t order_key(float f) {
     return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
 }
 
-/// Sorts the ids 0 .. n-1 by key (keys[id]), stably (equal keys in id order), into `out`:
-/// LSD radix sort of (key << 32 | id) items in passes of `digit_bits` bits, skipping the
+/// Sorts the ids 0 .. n-1 by order_key(values[id]), stably (equal keys in id order), into
+/// `out`: LSD radix sort of (key << 32 | id) items in passes of `digit_bits` bits, skipping the
 /// digits every key shares. Wide digits make fewer passes; narrow ones keep the histograms
 /// small for small n. `items` and `scratch` hold n items each.
 template <int digit_bits>
-void sort_ids_by_key(const uint32_t* keys, size_t n, uint32_t* out,
-                     std::unique_ptr<uint64_t[]>& items, std::unique_ptr<uint64_t[]>& scratch) {
+void sort_ids_by_key(const float* values, size_t n, uint32_t* out, uint64_t* items,
+                     uint64_t* scratch) {
     constexpr int passes = (32 + digit_bits - 1) / digit_bits;
     constexpr uint32_t digit_mask = (1u << digit_bits) - 1u;
     auto histogram = std::make_unique<uint32_t[]>(size_t(passes) << digit_bits);
     for (size_t i = 0; i < n; ++i) {
-        const uint32_t key = keys[i];
+        const uint32_t key = order_key(values[i]);
         for (int p = 0; p < passes; ++p)
             ++histogram[(size_t(p) << digit_bits) + ((key >> (digit_bits * p)) & digit_mask)];
         items[i] = uint64_t(key) << 32 | i;
     }
+    const uint32_t key0 = order_key(values[0]);
     int last = -1;  // the last pass that moves anything writes the ids to `out`
     for (int p = 0; p < passes; ++p) {
         const uint32_t* count = histogram.get() + (size_t(p) << digit_bits);
-        if (count[(keys[0] >> (digit_bits * p)) & digit_mask] != n) last = p;
+        if (count[(key0 >> (digit_bits * p)) & digit_mask] != n) last = p;
     }
     if (last < 0) {  // all keys equal: id order
         for (size_t i = 0; i < n; ++i) out[i] = static_cast<uint32_t>(i);
@@ -62,15 +112,14 @@ void sort_ids_by_key(const uint32_t* keys, size_t n, uint32_t* out,
             offset[d] = sum;
             sum += c;
         }
-        const uint64_t* in = items.get();
+        const uint64_t* in = items;
         if (p == last) {
             for (size_t i = 0; i < n; ++i)
                 out[offset[(in[i] >> shift) & digit_mask]++] = static_cast<uint32_t>(in[i]);
             return;
         }
-        uint64_t* to = scratch.get();
-        for (size_t i = 0; i < n; ++i) to[offset[(in[i] >> shift) & digit_mask]++] = in[i];
-        items.swap(scratch);
+        for (size_t i = 0; i < n; ++i) scratch[offset[(in[i] >> shift) & digit_mask]++] = in[i];
+        std::swap(items, scratch);
     }
 }
 
@@ -191,16 +240,15 @@ struct Builder {
 };
 
 /// Sets every node's bounds, bottom up (children follow their parent, so a backward sweep sees
-/// them first): a leaf's from its primitives in leaf order, a parent's from its first then its
-/// second child, as Aabb::grow would in a recursive build.
-void finish_nodes(std::vector<BvhNode>& nodes, const uint32_t* prim_ids,
-                  std::span<const Aabb> prim_bounds) {
+/// them first): a leaf's from grow_leaf(box, first, count) over its primitives in leaf order, a
+/// parent's from its first then its second child, as Aabb::grow would in a recursive build.
+template <class GrowLeaf>
+void finish_nodes(std::vector<BvhNode>& nodes, GrowLeaf&& grow_leaf) {
     for (size_t i = nodes.size(); i-- > 0;) {
         BvhNode& node = nodes[i];
         Aabb box;
         if (node.is_leaf()) {
-            for (uint32_t p = node.index; p < node.index + node.count; ++p)
-                box.grow(prim_bounds[prim_ids[p]]);
+            grow_leaf(box, node.index, node.count);
         } else {
             box.grow(nodes[i + 1].bounds());
             box.grow(nodes[node.index].bounds());
@@ -212,50 +260,120 @@ void finish_nodes(std::vector<BvhNode>& nodes, const uint32_t* prim_ids,
     }
 }
 
-}  // namespace
-
-Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params) {
+/// The median-split tree over n >= 1 primitives, without node bounds (finish_nodes sets them):
+/// nodes and prim_ids. fill(c2) writes twice every primitive's centroid (its box's lo + hi) to
+/// c2[0..2][0 .. n-1], one array per axis.
+///
+/// Memory: one TempBlock of about 40 bytes per primitive, carved as the centroids (12), the
+/// axis lists' first buffers (12), and a region of 16 that holds the radix sort's items first
+/// and the lists' second buffers and the side stamps (13) after the sorts.
+template <class FillCentroids>
+Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill) {
     Bvh bvh;
-    if (prim_bounds.empty()) return bvh;
-    const size_t n = prim_bounds.size();
     const uint32_t max_leaf = static_cast<uint32_t>(std::clamp(params.max_leaf_size, 1, 65535));
     bvh.prim_ids.resize(n);
     // Leaves hold at least max_leaf / 2 primitives (halving a range > max_leaf), so fewer than
     // 4n / max_leaf + 1 nodes are made.
     bvh.nodes.reserve(4 * n / max_leaf + 1);
 
-    std::unique_ptr<float[]> centroid2[3];
-    for (auto& c : centroid2) c = uninitialized<float>(n);
-    for (size_t i = 0; i < n; ++i)
-        for (int k = 0; k < 3; ++k) centroid2[k][i] = prim_bounds[i].lo[k] + prim_bounds[i].hi[k];
-    std::unique_ptr<uint32_t[]> lists[2][3];
+    const size_t sort_bytes = 2 * TempBlock::bytes_for<uint64_t>(n);
+    const size_t split_bytes =
+        3 * TempBlock::bytes_for<uint32_t>(n) + TempBlock::bytes_for<uint8_t>(n + 3);
+    TempBlock block(6 * TempBlock::bytes_for<uint32_t>(n) + std::max(sort_bytes, split_bytes));
+    float* centroid2[3];
+    for (auto& c : centroid2) c = block.take<float>(n);
+    fill(centroid2);
+    uint32_t* lists[2][3];
+    for (int k = 0; k < 3; ++k) lists[0][k] = block.take<uint32_t>(n);
+    const size_t reused = block.used();
     {
-        auto keys = uninitialized<uint32_t>(n);
-        auto items = uninitialized<uint64_t>(n), scratch = uninitialized<uint64_t>(n);
+        uint64_t* items = block.take<uint64_t>(n);
+        uint64_t* scratch = block.take<uint64_t>(n);
         for (int k = 0; k < 3; ++k) {
-            for (size_t i = 0; i < n; ++i) keys[i] = order_key(centroid2[k][i]);
-            lists[0][k] = uninitialized<uint32_t>(n);
-            lists[1][k] = uninitialized<uint32_t>(n);
             if (n >= (size_t(1) << 16))
-                sort_ids_by_key<16>(keys.get(), n, lists[0][k].get(), items, scratch);
+                sort_ids_by_key<16>(centroid2[k], n, lists[0][k], items, scratch);
             else
-                sort_ids_by_key<8>(keys.get(), n, lists[0][k].get(), items, scratch);
+                sort_ids_by_key<8>(centroid2[k], n, lists[0][k], items, scratch);
         }
     }
-    auto side = std::make_unique<uint8_t[]>(n + 3);  // stamp 0: no node yet
-    Builder b{{centroid2[0].get(), centroid2[1].get(), centroid2[2].get()},
-              side.get(),
+    block.rewind(reused);  // the sort's items are done with
+    for (int k = 0; k < 3; ++k) lists[1][k] = block.take<uint32_t>(n);
+    uint8_t* side = block.take<uint8_t>(n + 3);  // three bytes of padding for 32-bit gathers
+    std::memset(side, 0, n + 3);                 // stamp 0: no node yet
+    Builder b{{centroid2[0], centroid2[1], centroid2[2]},
+              side,
               {},
               bvh.prim_ids.data(),
               bvh.nodes,
               max_leaf};
     for (int k = 0; k < 3; ++k) {
-        b.lists[0][k] = lists[0][k].get();
-        b.lists[1][k] = lists[1][k].get();
+        b.lists[0][k] = lists[0][k];
+        b.lists[1][k] = lists[1][k];
     }
     b.build(0, static_cast<uint32_t>(n), 0u, 0);
-    finish_nodes(bvh.nodes, bvh.prim_ids.data(), prim_bounds);
     return bvh;
+}
+
+}  // namespace
+
+Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params) {
+    if (prim_bounds.empty()) return {};
+    const size_t n = prim_bounds.size();
+    Bvh bvh = median_tree(n, params, [&](float* const* c2) {
+        for (size_t i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) c2[k][i] = prim_bounds[i].lo[k] + prim_bounds[i].hi[k];
+    });
+    const uint32_t* ids = bvh.prim_ids.data();
+    finish_nodes(bvh.nodes, [&](Aabb& box, uint32_t first, uint32_t count) {
+        for (uint32_t p = first; p < first + count; ++p) box.grow(prim_bounds[ids[p]]);
+    });
+    return bvh;
+}
+
+/// The mesh's form of build_bvh_median with no array of triangle boxes: the centroids come
+/// straight from the vertices (the box Aabb::grow makes of a triangle's three vertices), and
+/// the leaf boxes from the vertices in leaf order, read in sequence, instead of the boxes
+/// gathered by id. The same min and max of the same numbers in the same order, so the same
+/// tree bit for bit (tests/accel/build_median_golden_test.cpp).
+MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
+    MeshAccel accel;
+    const size_t n = mesh.tris.size();
+    if (n == 0) return accel;
+    const uvec3* tris = mesh.tris.data();
+    const vec3* positions = mesh.positions.data();
+    accel.bvh = median_tree(n, params, [&](float* const* c2) {
+        for (size_t i = 0; i < n; ++i) {
+            Aabb box;
+            box.grow(positions[tris[i].x]);
+            box.grow(positions[tris[i].y]);
+            box.grow(positions[tris[i].z]);
+            for (int k = 0; k < 3; ++k) c2[k][i] = box.lo[k] + box.hi[k];
+        }
+    });
+    // vertices in leaf order: a gather by id, its addresses asked for ahead (the triangle's
+    // indices 16 triangles ahead, its vertices 8 ahead, whose indices are then in cache)
+    accel.verts.resize(n);
+    const uint32_t* ids = accel.bvh.prim_ids.data();
+    for (size_t k = 0; k < n; ++k) {
+        if (k + 16 < n) __builtin_prefetch(&tris[ids[k + 16]]);
+        if (k + 8 < n) {
+            const uvec3 ahead = tris[ids[k + 8]];
+            __builtin_prefetch(&positions[ahead.x]);
+            __builtin_prefetch(&positions[ahead.y]);
+            __builtin_prefetch(&positions[ahead.z]);
+        }
+        const uvec3 t = tris[ids[k]];
+        accel.verts[k] = {positions[t.x], positions[t.y], positions[t.z]};
+    }
+    const TriangleVerts* verts = accel.verts.data();
+    finish_nodes(accel.bvh.nodes, [&](Aabb& box, uint32_t first, uint32_t count) {
+        for (uint32_t p = first; p < first + count; ++p) {
+            box.grow(verts[p].a);
+            box.grow(verts[p].b);
+            box.grow(verts[p].c);
+        }
+    });
+    return accel;
 }
 
 }  // namespace raylane
