@@ -53,10 +53,6 @@ class TempBlock {
         assert(used_ <= size_);
         return p;
     }
-    /// Carving starts again from `mark` (a value of used()): later arrays reuse the memory.
-    size_t used() const { return used_; }
-    void rewind(size_t mark) { used_ = mark; }
-
     /// Bytes take() uses for n elements of T.
     template <class T>
     static size_t bytes_for(size_t n) {
@@ -68,6 +64,14 @@ class TempBlock {
     std::byte* base_ = nullptr;
     size_t size_ = 0, used_ = 0;
 };
+
+/// Starts the lifetime of n objects of the trivial type T at p (no code) and returns them.
+template <class T>
+T* begin_array(std::byte* p, size_t n) {
+    T* a = reinterpret_cast<T*>(p);
+    std::uninitialized_default_construct_n(a, n);
+    return a;
+}
 
 /// A float's bits mapped to an unsigned key with the same order (negatives flipped; -0 sorts
 /// before +0).
@@ -264,11 +268,14 @@ void finish_nodes(std::vector<BvhNode>& nodes, GrowLeaf&& grow_leaf) {
 /// nodes and prim_ids. fill(c2) writes twice every primitive's centroid (its box's lo + hi) to
 /// c2[0..2][0 .. n-1], one array per axis.
 ///
-/// Memory: one TempBlock of about 40 bytes per primitive, carved as the centroids (12), the
-/// axis lists' first buffers (12), and a region of 16 that holds the radix sort's items first
-/// and the lists' second buffers and the side stamps (13) after the sorts.
+/// Memory: nine arrays of n 4-byte values (the centroids and both buffers of the three axis
+/// lists) and a block of 16 bytes per primitive for the radix sort's items, reused for the side
+/// stamps after the sorts. The nine arrays are taken from `lent` when the caller lends 36n bytes
+/// it will overwrite afterwards (build_mesh_accel lends the triangle-vertex array it fills
+/// next), else from the block: fresh pages cost about 1.4 us each on this VM.
 template <class FillCentroids>
-Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill) {
+Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
+                std::byte* lent = nullptr) {
     Bvh bvh;
     const uint32_t max_leaf = static_cast<uint32_t>(std::clamp(params.max_leaf_size, 1, 65535));
     bvh.prim_ids.resize(n);
@@ -276,30 +283,29 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill) {
     // 4n / max_leaf + 1 nodes are made.
     bvh.nodes.reserve(4 * n / max_leaf + 1);
 
-    const size_t sort_bytes = 2 * TempBlock::bytes_for<uint64_t>(n);
-    const size_t split_bytes =
-        3 * TempBlock::bytes_for<uint32_t>(n) + TempBlock::bytes_for<uint8_t>(n + 3);
-    TempBlock block(6 * TempBlock::bytes_for<uint32_t>(n) + std::max(sort_bytes, split_bytes));
+    TempBlock block((lent ? 0 : 9 * TempBlock::bytes_for<uint32_t>(n)) +
+                    2 * TempBlock::bytes_for<uint64_t>(n));
+    // the nine arrays in the lent memory or the block
+    std::byte* nine = lent ? lent : reinterpret_cast<std::byte*>(block.take<uint32_t>(9 * n));
     float* centroid2[3];
-    for (auto& c : centroid2) c = block.take<float>(n);
-    fill(centroid2);
     uint32_t* lists[2][3];
-    for (int k = 0; k < 3; ++k) lists[0][k] = block.take<uint32_t>(n);
-    const size_t reused = block.used();
-    {
-        uint64_t* items = block.take<uint64_t>(n);
-        uint64_t* scratch = block.take<uint64_t>(n);
-        for (int k = 0; k < 3; ++k) {
-            if (n >= (size_t(1) << 16))
-                sort_ids_by_key<16>(centroid2[k], n, lists[0][k], items, scratch);
-            else
-                sort_ids_by_key<8>(centroid2[k], n, lists[0][k], items, scratch);
-        }
+    for (size_t k = 0; k < 3; ++k) {
+        centroid2[k] = begin_array<float>(nine + 4 * n * k, n);
+        lists[0][k] = begin_array<uint32_t>(nine + 4 * n * (3 + k), n);
+        lists[1][k] = begin_array<uint32_t>(nine + 4 * n * (6 + k), n);
     }
-    block.rewind(reused);  // the sort's items are done with
-    for (int k = 0; k < 3; ++k) lists[1][k] = block.take<uint32_t>(n);
-    uint8_t* side = block.take<uint8_t>(n + 3);  // three bytes of padding for 32-bit gathers
-    std::memset(side, 0, n + 3);                 // stamp 0: no node yet
+    fill(centroid2);
+    uint64_t* items = block.take<uint64_t>(n);
+    uint64_t* scratch = block.take<uint64_t>(n);
+    for (int k = 0; k < 3; ++k) {
+        if (n >= (size_t(1) << 16))
+            sort_ids_by_key<16>(centroid2[k], n, lists[0][k], items, scratch);
+        else
+            sort_ids_by_key<8>(centroid2[k], n, lists[0][k], items, scratch);
+    }
+    // the sort's items are done with: their memory holds the side stamps
+    uint8_t* side = reinterpret_cast<uint8_t*>(items);  // three bytes of padding for gathers
+    std::memset(side, 0, n + 3);                        // stamp 0: no node yet
     Builder b{{centroid2[0], centroid2[1], centroid2[2]},
               side,
               {},
@@ -341,18 +347,26 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
     if (n == 0) return accel;
     const uvec3* tris = mesh.tris.data();
     const vec3* positions = mesh.positions.data();
-    accel.bvh = median_tree(n, params, [&](float* const* c2) {
-        for (size_t i = 0; i < n; ++i) {
-            Aabb box;
-            box.grow(positions[tris[i].x]);
-            box.grow(positions[tris[i].y]);
-            box.grow(positions[tris[i].z]);
-            for (int k = 0; k < 3; ++k) c2[k][i] = box.lo[k] + box.hi[k];
-        }
-    });
-    // vertices in leaf order: a gather by id, its addresses asked for ahead (the triangle's
-    // indices 16 triangles ahead, its vertices 8 ahead, whose indices are then in cache)
+    // the vertex array, 36 bytes per triangle, is lent to the build as its nine arrays before
+    // it gets the vertices: no pages are faulted in twice
+    static_assert(sizeof(TriangleVerts) == 9 * sizeof(uint32_t));
     accel.verts.resize(n);
+    std::byte* lent = reinterpret_cast<std::byte*>(accel.verts.data());
+    accel.bvh = median_tree(
+        n, params,
+        [&](float* const* c2) {
+            for (size_t i = 0; i < n; ++i) {
+                Aabb box;
+                box.grow(positions[tris[i].x]);
+                box.grow(positions[tris[i].y]);
+                box.grow(positions[tris[i].z]);
+                for (int k = 0; k < 3; ++k) c2[k][i] = box.lo[k] + box.hi[k];
+            }
+        },
+        lent);
+    // vertices in leaf order (made anew in the lent memory): a gather by id, its addresses
+    // asked for ahead (the triangle's indices 16 triangles ahead, its vertices 8 ahead, whose
+    // indices are then in cache)
     const uint32_t* ids = accel.bvh.prim_ids.data();
     for (size_t k = 0; k < n; ++k) {
         if (k + 16 < n) __builtin_prefetch(&tris[ids[k + 16]]);
@@ -363,7 +377,8 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
             __builtin_prefetch(&positions[ahead.z]);
         }
         const uvec3 t = tris[ids[k]];
-        accel.verts[k] = {positions[t.x], positions[t.y], positions[t.z]};
+        std::construct_at(&accel.verts[k],
+                          TriangleVerts{positions[t.x], positions[t.y], positions[t.z]});
     }
     const TriangleVerts* verts = accel.verts.data();
     finish_nodes(accel.bvh.nodes, [&](Aabb& box, uint32_t first, uint32_t count) {
