@@ -38,6 +38,25 @@ struct PathQueue {
         for (auto* v : {&slot, &key, &reflection_depth, &refraction_depth, &env_map, &local_only})
             v->resize(n);
     }
+    /// Appends all of `other`'s rays.
+    void append(const PathQueue& other) {
+        if (other.size == 0) return;
+        reserve_more(other.size);
+        const size_t at = static_cast<size_t>(size), n = static_cast<size_t>(other.size);
+        auto copy = [&](auto& to, const auto& from) {
+            std::copy(from.begin(), from.begin() + static_cast<std::ptrdiff_t>(n),
+                      to.begin() + static_cast<std::ptrdiff_t>(at));
+        };
+        copy(ox, other.ox), copy(oy, other.oy), copy(oz, other.oz);
+        copy(dx, other.dx), copy(dy, other.dy), copy(dz, other.dz);
+        copy(wr, other.wr), copy(wg, other.wg), copy(wb, other.wb);
+        copy(fr, other.fr), copy(fg, other.fg), copy(fb, other.fb);
+        copy(slot, other.slot), copy(key, other.key);
+        copy(reflection_depth, other.reflection_depth);
+        copy(refraction_depth, other.refraction_depth);
+        copy(env_map, other.env_map), copy(local_only, other.local_only);
+        size += other.size;
+    }
     void push(vec3 o, vec3 d, vec3 weight, vec3 filter, int32_t pixel_slot, uint32_t path_key,
               int32_t refl, int32_t refr, int32_t env, bool local) {
         reserve_more(1);

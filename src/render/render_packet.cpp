@@ -80,7 +80,7 @@ void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays
 
 /// A thread's buffers for shading tiles; grown on the first tiles, then reused.
 struct TileBuffers {
-    PathQueue paths, next;
+    PathQueue paths, next, next_inside;
     HitArrays hits;
     std::vector<ShadowQueue> shadows;  ///< one per light
     std::vector<int32_t> order, material_count;
@@ -216,7 +216,8 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
             b.order[size_t(b.material_count[m]++)] = i;
         }
         // shade each material's hits W at a time (material_count[m] is now the end of m)
-        const ShadeTarget target{b.acc_r, b.acc_g, b.acc_b, b.shadows.data(), &b.next, &counts};
+        const ShadeTarget target{b.acc_r, b.acc_g,        b.acc_b, b.shadows.data(),
+                                 &b.next, &b.next_inside, &counts};
         int begin = 0;
         for (size_t m = 0; m < materials; ++m) {
             const int end = b.material_count[m];
@@ -230,6 +231,8 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
             trace_shadows<W>(scene, accel, b.shadows[j], camera_pass, b);
             b.shadows[j].clear();
         }
+        b.next.append(b.next_inside);  // rays inside a medium after the others
+        b.next_inside.clear();
         std::swap(b.paths, b.next);
         b.next.clear();
     }

@@ -45,6 +45,10 @@ struct ShadeTarget {
     float* acc_b = nullptr;
     ShadowQueue* shadows = nullptr;
     PathQueue* next = nullptr;
+    /// Rays that travel inside a refractive medium (refracted in, reflected inside): kept apart
+    /// from `next` and traced after it, so that a packet holds rays of one kind (a refracted ray
+    /// crosses the mesh, a reflected one leaves it: mixed in a packet, their lanes part at once).
+    PathQueue* next_inside = nullptr;
     ShadeCounts* counts = nullptr;
 };
 
@@ -260,19 +264,34 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
                 const vmask<W> traced = mask_and(reflects, dot(ng, reflected_dir) > zero);
                 if (any(traced)) {
                     out.counts->reflection_rays += uint64_t(count(traced));
-                    push_packet<W>(*out.next, org_out, reflected_dir, weight * r,
-                                   select(entering, bc<W>(no_filter), bc<W>(m.filter)), slot,
-                                   child_keys<W>(key, purpose_reflect, 0), refl_depth,
-                                   refr_depth + vint<W>(1), child_env, vint<W>(0), traced);
+                    const Vec3<W> filter = select(entering, bc<W>(no_filter), bc<W>(m.filter));
+                    const vint<W> child = child_keys<W>(key, purpose_reflect, 0);
+                    for (const bool inside : {false, true}) {
+                        // reflected inside where the ray came from inside
+                        const vmask<W> lanes =
+                            inside ? mask_andnot(traced, entering) : mask_and(traced, entering);
+                        if (any(lanes))
+                            push_packet<W>(inside ? *out.next_inside : *out.next, org_out,
+                                           reflected_dir, weight * r, filter, slot, child,
+                                           refl_depth, refr_depth + vint<W>(1), child_env,
+                                           vint<W>(0), lanes);
+                    }
                 }
             }
             const vmask<W> transmits = mask_and(mask_and(alive, refracts), r < one);
             if (o.refraction && any(transmits)) {
                 out.counts->refraction_rays += uint64_t(count(transmits));
-                push_packet<W>(*out.next, org_in, t_dir, weight * (one - r),
-                               select(entering, bc<W>(m.filter), bc<W>(no_filter)), slot,
-                               child_keys<W>(key, purpose_refract, 0), refl_depth,
-                               refr_depth + vint<W>(1), child_env, vint<W>(0), transmits);
+                const Vec3<W> filter = select(entering, bc<W>(m.filter), bc<W>(no_filter));
+                const vint<W> child = child_keys<W>(key, purpose_refract, 0);
+                for (const bool inside : {false, true}) {
+                    // refracted inside where the ray came from outside
+                    const vmask<W> lanes =
+                        inside ? mask_and(transmits, entering) : mask_andnot(transmits, entering);
+                    if (any(lanes))
+                        push_packet<W>(inside ? *out.next_inside : *out.next, org_in, t_dir,
+                                       weight * (one - r), filter, slot, child, refl_depth,
+                                       refr_depth + vint<W>(1), child_env, vint<W>(0), lanes);
+                }
             }
             return;
         }
