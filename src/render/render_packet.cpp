@@ -216,8 +216,13 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
             b.order[size_t(b.material_count[m]++)] = i;
         }
         // shade each material's hits W at a time (material_count[m] is now the end of m)
-        const ShadeTarget target{b.acc_r, b.acc_g,        b.acc_b, b.shadows.data(),
-                                 &b.next, &b.next_inside, &counts};
+        const ShadeTarget target{.acc_r = b.acc_r,
+                                 .acc_g = b.acc_g,
+                                 .acc_b = b.acc_b,
+                                 .shadows = b.shadows.data(),
+                                 .next = &b.next,
+                                 .next_inside = &b.next_inside,
+                                 .counts = &counts};
         int begin = 0;
         for (size_t m = 0; m < materials; ++m) {
             const int end = b.material_count[m];
