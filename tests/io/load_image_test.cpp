@@ -501,6 +501,25 @@ TEST(LoadTexture, DecodesAJpegWhoseDcOverflowsIntWithDefinedBehaviour) {
     }
 }
 
+TEST(LoadTexture, DecodesAJpegWhoseHuffmanCodesRunPastItsBitsWithDefinedBehaviour) {
+    // A corrupt scan whose codes need more bits than are left before a marker: stb_image 2.27 let
+    // its bit count go negative and then shifted a 32-bit buffer by 32, undefined behaviour that
+    // UBSan reports here in the asan preset (found by fuzz_image, which replays these bytes). The
+    // build gives stb 2.28's guards (cmake/patch_stb_image.cmake): the missing bits read as
+    // zeros, and the corrupt file decodes to some texture of its declared size.
+    const std::string jpeg = read_file(std::string(RAYLANE_SOURCE_DIR) +
+                                       "/tests/fuzz/regressions/image/"
+                                       "jpeg_ac_codes_longer_than_the_bits_left");
+    ASSERT_EQ(jpeg.size(), 355u);
+    const Texture texture = load_texture_from_memory(jpeg, "overrun.jpg");
+    EXPECT_EQ(texture.width, 20);
+    EXPECT_EQ(texture.height, 232);
+    ASSERT_EQ(texture.texels.size(), size_t{20 * 232 * 3});
+    for (float texel : texture.texels) {
+        EXPECT_TRUE(texel >= 0.0f && texel <= 1.0f) << texel;
+    }
+}
+
 TEST(LoadTexture, RejectsTruncatedAndCorruptHdrsWithoutHanging) {
     const std::string real = read_file(shared_dir + "/textures/env/venice_sunset_1k.hdr");
     for (size_t keep : {real.size() / 2, real.size() - 1}) {
