@@ -484,6 +484,16 @@ std::string jpeg_with_overflowing_dc() {
     return jpeg + "\xff\xd9";
 }
 
+/// A decoded corrupt image: its declared size, three channels, every texel in [0, 1].
+void expect_texture_of_size(const Texture& texture, int width, int height) {
+    EXPECT_EQ(texture.width, width);
+    EXPECT_EQ(texture.height, height);
+    ASSERT_EQ(texture.texels.size(), size_t(width) * size_t(height) * 3);
+    for (float texel : texture.texels) {
+        EXPECT_TRUE(texel >= 0.0f && texel <= 1.0f) << texel;
+    }
+}
+
 TEST(LoadTexture, DecodesAJpegWhoseDcOverflowsIntWithDefinedBehaviour) {
     // io/stb_image.cpp is compiled with -fwrapv, so the overflow wraps and the result is an
     // ordinary texture. The undefined behaviour itself is seen by clang's UBSan only (GCC
@@ -492,13 +502,7 @@ TEST(LoadTexture, DecodesAJpegWhoseDcOverflowsIntWithDefinedBehaviour) {
     EXPECT_EQ(jpeg,
               read_file(std::string(RAYLANE_SOURCE_DIR) +
                         "/tests/fuzz/regressions/image/jpeg_dc_times_quantiser_overflows_int"));
-    const Texture texture = load_texture_from_memory(jpeg, "overflow.jpg");
-    EXPECT_EQ(texture.width, 16);
-    EXPECT_EQ(texture.height, 8);
-    ASSERT_EQ(texture.texels.size(), size_t{16 * 8 * 3});
-    for (float texel : texture.texels) {
-        EXPECT_TRUE(texel >= 0.0f && texel <= 1.0f) << texel;
-    }
+    expect_texture_of_size(load_texture_from_memory(jpeg, "overflow.jpg"), 16, 8);
 }
 
 TEST(LoadTexture, DecodesAJpegWhoseHuffmanCodesRunPastItsBitsWithDefinedBehaviour) {
@@ -511,13 +515,7 @@ TEST(LoadTexture, DecodesAJpegWhoseHuffmanCodesRunPastItsBitsWithDefinedBehaviou
                                        "/tests/fuzz/regressions/image/"
                                        "jpeg_ac_codes_longer_than_the_bits_left");
     ASSERT_EQ(jpeg.size(), 355u);
-    const Texture texture = load_texture_from_memory(jpeg, "overrun.jpg");
-    EXPECT_EQ(texture.width, 20);
-    EXPECT_EQ(texture.height, 232);
-    ASSERT_EQ(texture.texels.size(), size_t{20 * 232 * 3});
-    for (float texel : texture.texels) {
-        EXPECT_TRUE(texel >= 0.0f && texel <= 1.0f) << texel;
-    }
+    expect_texture_of_size(load_texture_from_memory(jpeg, "overrun.jpg"), 20, 232);
 }
 
 TEST(LoadTexture, RejectsTruncatedAndCorruptHdrsWithoutHanging) {
