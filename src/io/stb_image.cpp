@@ -7,7 +7,8 @@
 // -fwrapv makes that arithmetic wrap, as the decoder assumes, so a corrupt file decodes to wrong
 // pixels (or is rejected) with defined behaviour in every build; no other check is turned off.
 // Our own code stays in io/load_image.cpp, under every sanitizer check. The stb_image.h included
-// here is 2.27 with stb 2.28's guards on the Huffman bit count (cmake/patch_stb_image.cmake).
+// here is 2.27 with bit-count guards after stb 2.28's on the Huffman data
+// (cmake/patch_stb_image.cmake).
 #define STB_IMAGE_IMPLEMENTATION
 #include "io/stb_image.h"
 

@@ -509,7 +509,7 @@ TEST(LoadTexture, DecodesAJpegWhoseHuffmanCodesRunPastItsBitsWithDefinedBehaviou
     // A corrupt scan whose codes need more bits than are left before a marker: stb_image 2.27 let
     // its bit count go negative and then shifted a 32-bit buffer by 32, undefined behaviour that
     // UBSan reports here in the asan preset (found by fuzz_image, which replays these bytes). The
-    // build gives stb 2.28's guards (cmake/patch_stb_image.cmake): the missing bits read as
+    // build adds guards after stb 2.28's (cmake/patch_stb_image.cmake): the missing bits read as
     // zeros, and the corrupt file decodes to some texture of its declared size.
     const std::string jpeg = read_file(std::string(RAYLANE_SOURCE_DIR) +
                                        "/tests/fuzz/regressions/image/"
