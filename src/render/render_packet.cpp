@@ -243,6 +243,64 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
     }
 }
 
+/// Whether kernels of feature set F spawn secondary rays (mirrors, glass, glossy lobes).
+template <uint32_t F>
+constexpr bool has_secondary_rays = (F & (feature_reflection | feature_refraction |
+                                          feature_glossy)) != 0;
+
+/// shade_tile_sample for scenes without secondary rays: one pass, so the camera block is traced
+/// and each packet shaded where it stands, its lanes grouped by the object they hit (one
+/// material each), without the queue, the sort by material and the gathers; shadows are
+/// traced as blocks as there. The same arithmetic per ray, so the same image.
+template <int W, uint32_t F>
+void shade_camera_block(const Scene& scene, const Accel& accel, const ShadeParams& params,
+                        int32_t sample, uint32_t seed, const RayPacket<W>* rays,
+                        const vmask<W>* active, const vint<W>* slot, const vint<W>* pixel,
+                        int count, TileBuffers& b, ShadeCounts& counts) {
+    static_assert(!has_secondary_rays<F>);
+    constexpr int max_packets = max_block_rays / W;
+    if (b.shadows.size() < scene.lights.size()) b.shadows.resize(scene.lights.size());
+    HitPacket<W> hits[max_packets];
+    intersect_closest_block(scene, accel, rays, active, hits, count);
+    const ShadeTarget target{.acc_r = b.acc_r,
+                             .acc_g = b.acc_g,
+                             .acc_b = b.acc_b,
+                             .shadows = b.shadows.data(),
+                             .next = nullptr,
+                             .next_inside = nullptr,
+                             .counts = &counts};
+    const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
+    for (int p = 0; p < count; ++p) {
+        const vmask<W> hit = mask_andnot(active[p], lt(hits[p].prim, vint<W>(0)));
+        const vmask<W> miss = mask_andnot(active[p], hit);
+        if (any(miss)) {
+            const Vec3<W> l = miss_radiance<W>(scene, vint<W>(-1), rays[p].dir, miss);
+            shade_detail::accumulate<W>(target, slot[p], one * l, miss);
+        }
+        const ShadeInput<W> in{.rays = rays[p],
+                               .hits = hits[p],
+                               .weight = one,
+                               .slot = slot[p],
+                               .key = vint<W>(0),
+                               .refl_depth = vint<W>(0),
+                               .refr_depth = vint<W>(0),
+                               .env = vint<W>(-1),
+                               .pixel = pixel[p],
+                               .local_only = mask_andnot(hit, hit)};
+        for (vmask<W> todo = hit; any(todo);) {
+            const int32_t object = get(hits[p].object, first_active(todo));
+            const vmask<W> same = mask_and(todo, eq(hits[p].object, vint<W>(object)));
+            const Material& m = scene.materials[scene.objects[size_t(object)].material];
+            shade_hits<W, F>(scene, m, params, sample, seed, in, same, target);
+            todo = mask_andnot(todo, same);
+        }
+    }
+    for (size_t j = 0; j < scene.lights.size(); ++j) {
+        trace_shadows<W>(scene, accel, b.shadows[j], true, b);
+        b.shadows[j].clear();
+    }
+}
+
 template <int W, uint32_t F>
 RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                                     const RenderParams& params) {
@@ -315,13 +373,18 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 std::fill(b.acc_r, b.acc_r + max_block_rays, 0.0f);
                 std::fill(b.acc_g, b.acc_g + max_block_rays, 0.0f);
                 std::fill(b.acc_b, b.acc_b + max_block_rays, 0.0f);
-                const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
-                const vint<W> zero(0), none(-1);
-                for (int p = 0; p < count; ++p) {
-                    push_packet<W>(b.paths, rays[p].org, rays[p].dir, one, one, slot[p], zero, zero,
-                                   zero, none, zero, active[p]);
+                if constexpr (has_secondary_rays<F>) {
+                    const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
+                    const vint<W> zero(0), none(-1);
+                    for (int p = 0; p < count; ++p) {
+                        push_packet<W>(b.paths, rays[p].org, rays[p].dir, one, one, slot[p], zero,
+                                       zero, zero, none, zero, active[p]);
+                    }
+                    shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
+                } else {
+                    shade_camera_block<W, F>(scene, accel, shade, s, params.seed, rays, active,
+                                             slot, pixel, count, b, counts);
                 }
-                shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
                 for (int p = 0; p < count; ++p) {
                     value[p].x = gather(b.acc_r, slot[p], active[p]);
                     value[p].y = gather(b.acc_g, slot[p], active[p]);

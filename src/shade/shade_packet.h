@@ -1,5 +1,6 @@
-// shade: the packet path's shading kernels. The hits of a tile are grouped by material and each
-// group is shaded W lanes at a time by shade_batch: the terms of shade_scalar.cpp (local
+// shade: the packet path's shading kernels. shade_hits shades W hits of one material at a time
+// (grouped by a counting sort in the wavefront, by object in a camera packet when the scene has
+// no secondary rays; docs/architecture.md): the terms of shade_scalar.cpp (local
 // lights and lobes, glossy, mirror, glass with Beer's law), but instead of recursing, new rays go
 // to queues - shadow rays per light, secondary rays to the next pass - carrying the weight their
 // radiance gets in the pixel. Compiled per feature set F (features.h): a scene pays only for
