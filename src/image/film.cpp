@@ -30,6 +30,14 @@ Film make_film(int width, int height) {
     return f;
 }
 
+Film make_film_for_overwrite(int width, int height) {
+    Film f;
+    f.width = width;
+    f.height = height;
+    f.pixels.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+    return f;
+}
+
 uint8_t encode_channel(float linear, Encoding encoding) {
     float x = std::isfinite(linear) ? std::clamp(linear, 0.0f, 1.0f) : 0.0f;
     if (encoding == Encoding::srgb)

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/ray.h"
@@ -13,14 +15,41 @@ namespace raylane {
 /// or linear (AOVs, and the report's look: no gamma).
 enum class Encoding : uint8_t { srgb, linear };
 
+/// std::allocator whose value-initialising construct() default-initialises instead: a vector
+/// of floats grown by resize() is left unwritten (a 1080p film is 25 MB that the renderers
+/// overwrite anyway). Everything else is std::allocator's.
+template <class T>
+struct OverwriteAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = OverwriteAllocator<U>;
+    };
+    OverwriteAllocator() = default;
+    template <class U>
+    OverwriteAllocator(const OverwriteAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
 struct Film {
     int width = 0, height = 0;
-    std::vector<vec3> pixels;  ///< row-major, row 0 at the top, linear
+    std::vector<vec3, OverwriteAllocator<vec3>> pixels;  ///< row-major, row 0 at the top, linear
     vec3& at(int x, int y) { return pixels[static_cast<size_t>(y) * width + x]; }
     const vec3& at(int x, int y) const { return pixels[static_cast<size_t>(y) * width + x]; }
 };
 
+/// A black film.
 Film make_film(int width, int height);
+
+/// A film whose pixels are not written (their values are unspecified): for renderers that write
+/// every pixel.
+Film make_film_for_overwrite(int width, int height);
 
 /// 8-bit value of a linear channel: clamped to [0, 1], optionally sRGB-encoded, rounded.
 uint8_t encode_channel(float linear, Encoding encoding);

@@ -308,7 +308,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     const Camera& cam = scene.camera;
     const CameraFrame frame = make_camera_frame(cam);
     RenderResult result;
-    result.film = make_film(cam.width, cam.height);
+    result.film = make_film_for_overwrite(cam.width, cam.height);
     const int spp = params.spp > 0 ? params.spp : 1;
     // a tile is a block: at most max_block_rays pixels, rows a multiple of W wide
     const int tile_size = std::min(params.tile_size, 16);

@@ -47,7 +47,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     const Camera& cam = scene.camera;
     const CameraFrame frame = make_camera_frame(cam);
     RenderResult result;
-    result.film = make_film(cam.width, cam.height);
+    result.film = make_film_for_overwrite(cam.width, cam.height);
     const int spp = params.spp > 0 ? params.spp : 1;
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size);
     std::atomic<uint64_t> shadow_rays{0}, reflection_rays{0}, refraction_rays{0}, glossy_rays{0},
