@@ -666,6 +666,68 @@ bool block_may_hit(const BlockBounds& b, const BvhNode& node) {
     return t0 <= t1 + margin;
 }
 
+/// The box [lo, hi] under m, as a point (w = 1) or a direction (w = 0): the centre mapped and the
+/// half extent by |m|. `mag` bounds the size of the terms summed in each row, the scale of the
+/// rounding of to_object_space.
+void transform_box(const mat4& m, float w, vec3 lo, vec3 hi, vec3& out_lo, vec3& out_hi,
+                   vec3& mag) {
+    const vec3 c = 0.5f * (lo + hi), e = 0.5f * (hi - lo);
+    const vec3 size = glm::max(glm::abs(lo), glm::abs(hi));
+    for (int k = 0; k < 3; ++k) {
+        float centre = w * m[3][k], extent = 0.0f, terms = std::fabs(w * m[3][k]);
+        for (int j = 0; j < 3; ++j) {
+            centre += m[j][k] * c[j];
+            extent += std::fabs(m[j][k]) * e[j];
+            terms += std::fabs(m[j][k]) * size[j];
+        }
+        out_lo[k] = centre - extent, out_hi[k] = centre + extent, mag[k] = terms;
+    }
+}
+
+/// False only when no ray of the block can meet the plane at t >= 0: every origin strictly on
+/// one side and every direction strictly away from it, so plane_packet.h's t = S / D is negative
+/// (S = n.(point - org), D = n.dir in the object's space). Interval arithmetic over the block's
+/// origins and directions (from the reciprocals, on the axes where they have one sign); the
+/// margins, 4e-6 of the magnitudes involved, are far above the rounding of the transform and the
+/// dot products (a few 1e-7), and far below the offset of a ray leaving the plane (256 ulps).
+bool block_may_hit_plane(const BlockBounds& b, const Object& object, const Plane& plane) {
+    if (!(b.t_min >= 0.0f)) return true;
+    vec3 olo = b.org_lo, ohi = b.org_hi, dlo, dhi;
+    for (int k = 0; k < 3; ++k) {
+        if (!b.usable[k] && (object.has_transform || plane.normal[k] != 0.0f)) return true;
+        dlo[k] = b.usable[k] ? 1.0f / b.inv_hi[k] : 0.0f;
+        dhi[k] = b.usable[k] ? 1.0f / b.inv_lo[k] : 0.0f;
+    }
+    vec3 omag = glm::max(glm::abs(olo), glm::abs(ohi)),
+         dmag = glm::max(glm::abs(dlo), glm::abs(dhi));
+    if (object.has_transform) {
+        transform_box(object.object_from_world, 1.0f, b.org_lo, b.org_hi, olo, ohi, omag);
+        const vec3 wlo = dlo, whi = dhi;
+        transform_box(object.object_from_world, 0.0f, wlo, whi, dlo, dhi, dmag);
+    }
+    const vec3 n = plane.normal, p = plane.point;
+    float s_lo = 0.0f, s_hi = 0.0f, d_lo = 0.0f, d_hi = 0.0f, s_mag = 0.0f, d_mag = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        if (n[k] == 0.0f) continue;  // the bounds of that axis may be infinite
+        const float s0 = n[k] * (p[k] - olo[k]), s1 = n[k] * (p[k] - ohi[k]);
+        const float d0 = n[k] * dlo[k], d1 = n[k] * dhi[k];
+        s_lo += std::min(s0, s1), s_hi += std::max(s0, s1);
+        d_lo += std::min(d0, d1), d_hi += std::max(d0, d1);
+        s_mag += std::fabs(n[k]) * (std::fabs(p[k]) + omag[k]);
+        d_mag += std::fabs(n[k]) * dmag[k];
+    }
+    const float s_margin = 4e-6f * s_mag, d_margin = 4e-6f * d_mag;
+    const bool away =
+        (s_hi < -s_margin && d_lo > d_margin) || (s_lo > s_margin && d_hi < -d_margin);
+    return !away;
+}
+
+/// Whether the unbounded object may be hit by a ray of the block (planes: block_may_hit_plane).
+bool block_may_hit_unbounded(const Scene& scene, const BlockBounds& b, const Object& object) {
+    return object.kind != ShapeKind::plane ||
+           block_may_hit_plane(b, object, scene.planes[object.shape]);
+}
+
 /// Ranged traversal of one BVH by a block: leaf(node, first, last) is called with the packets
 /// [first, last] that touch the leaf; test(p, node) is packet p's slab mask for the node.
 template <int W, class Test, class Leaf>
@@ -725,14 +787,16 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
         hits[p] = HitPacket<W>{};
         sr[p] = make_slab_ray(rays[p]);
     }
-    for (uint32_t object : accel.unbounded)
+    const BlockBounds bounds = make_block_bounds(rays, sr, active, count);
+    for (uint32_t object : accel.unbounded) {
+        if (!block_may_hit_unbounded(scene, bounds, scene.objects[object])) continue;
         for (int p = 0; p < count; ++p)
             if (any(active[p]))
                 intersect_object_closest(scene, accel, object, rays[p], active[p], hits[p],
                                          static_cast<vint<W>*>(nullptr));
+    }
     if (accel.top.nodes.empty()) return;
     for (int p = 0; p < count; ++p) limit[p] = t_limit(rays[p], hits[p]);
-    const BlockBounds bounds = make_block_bounds(rays, sr, active, count);
     auto test = [&](int p, const BvhNode& node) {
         vfloat<W> t_near;
         return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
@@ -796,16 +860,21 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
     for (int p = 0; p < count; ++p) {
         sr[p] = make_slab_ray(rays[p]);
         occluded[p] = mask_and(active[p], mask_not(active[p]));
-        for (uint32_t object : accel.unbounded) {
+    }
+    // the bounds of the active rays, also for the BVH (those the unbounded objects occlude are
+    // few: a bound over a few more rays still holds)
+    const BlockBounds bounds = make_block_bounds(rays, sr, active, count);
+    for (uint32_t object : accel.unbounded) {
+        if (!block_may_hit_unbounded(scene, bounds, scene.objects[object])) continue;
+        for (int p = 0; p < count; ++p) {
             const vmask<W> lanes = mask_andnot(active[p], occluded[p]);
             if (any(lanes))
                 occluded[p] = mask_or(occluded[p],
                                       intersect_object_any(scene, accel, object, rays[p], lanes));
         }
-        open[p] = mask_andnot(active[p], occluded[p]);
     }
+    for (int p = 0; p < count; ++p) open[p] = mask_andnot(active[p], occluded[p]);
     if (accel.top.nodes.empty()) return;
-    const BlockBounds bounds = make_block_bounds(rays, sr, open, count);
     auto test = [&](int p, const BvhNode& node) {
         vfloat<W> t_near;
         return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),

@@ -14,6 +14,7 @@
 #include "core/offset.h"
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
+#include "scene/transform.h"
 #include "support/ray_packets.h"
 #include "support/widths.h"
 #include "traverse/intersect_scalar.h"
@@ -313,6 +314,80 @@ TYPED_TEST(IntersectPacket, BlocksHandleNegativeIntervals) {
         EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want), 0u) << name;
         EXPECT_EQ(any_block_mismatches<W>(*l, rays, blocked), 0u) << name;
     }
+}
+
+/// Blocks of rays leaving a plane from points on it (offset as the renderer offsets them): a
+/// tilted plane far from the origin and a rotated, scaled, translated one. Each block of 256 rays
+/// shares an elevation above its plane, from steep to grazing to slightly below: blocks that all
+/// leave are culled against the plane (block_may_hit_plane), the others tested; every answer must
+/// be the scalar one.
+TYPED_TEST(IntersectPacket, BlocksMatchScalarOnRaysLeavingPlanes) {
+    constexpr int W = TypeParam::value;
+    Loaded l;
+    l.scene.materials.resize(1);
+    l.scene.planes = {Plane{vec3(1000.0f, -3.0f, 2000.0f), glm::normalize(vec3(0.2f, 1.0f, -0.1f))},
+                      Plane{vec3(0.5f, 0.25f, -1.0f), glm::normalize(vec3(0.3f, 0.9f, 0.2f))}};
+    Transform t;
+    t.translate = glm::dvec3(5.0, -2.0, 300.0);
+    t.rotate = make_rotation_xyz(glm::dvec3(20.0, 35.0, -10.0));
+    t.scale = glm::dvec3(2.0, 0.5, 3.0);
+    l.scene.objects.resize(2);
+    for (uint32_t i = 0; i < 2; ++i) {
+        l.scene.objects[i].kind = ShapeKind::plane;
+        l.scene.objects[i].shape = i;
+    }
+    set_transform(l.scene.objects[1], t);
+    ASSERT_TRUE(l.scene.objects[1].has_transform);
+    l.accel = build_accel(l.scene, BuildParams{});
+
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> uni(-1.0f, 1.0f);
+    const float elevations[] = {1.2f, 0.2f, 1e-2f, 1e-4f, 1e-6f, 0.0f, -1e-6f, -1e-3f};
+    std::vector<Ray> rays;
+    for (uint32_t i = 0; i < 2; ++i) {
+        const Object& object = l.scene.objects[i];
+        const Plane& plane = l.scene.planes[i];
+        // a frame on the plane in world space
+        const glm::mat3 normal_to_world = glm::transpose(glm::mat3(object.object_from_world));
+        const vec3 n = glm::normalize(normal_to_world * plane.normal);
+        const vec3 a = glm::normalize(glm::cross(n, vec3(0.0f, 0.0f, 1.0f)));
+        const vec3 b = glm::cross(n, a);
+        for (float elevation : elevations) {
+            for (float spread : {0.01f, 10.0f}) {
+                for (int block = 0; block < 4; ++block) {
+                    const float azimuth = 3.14159f * uni(rng);
+                    const vec3 d0 =
+                        std::cos(elevation) * (std::cos(azimuth) * a + std::sin(azimuth) * b) +
+                        std::sin(elevation) * n;
+                    for (int k = 0; k < max_block_rays; ++k) {
+                        const vec3 q = plane.point + spread * (uni(rng) * vec3(1, 0, 0) +
+                                                               uni(rng) * vec3(0, 0, 1));
+                        // onto the plane (object space), then to world space
+                        const vec3 on = q - glm::dot(q - plane.point, plane.normal) /
+                                                glm::dot(plane.normal, plane.normal) * plane.normal;
+                        const vec3 p = vec3(object.world_from_object * glm::vec4(on, 1.0f));
+                        const float reach =
+                            std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+                        const vec3 o = offset_ray_origin(p, n, reach);
+                        const vec3 d = d0 + 1e-3f * vec3(uni(rng), uni(rng), uni(rng));
+                        rays.push_back({o, d, 0.0f, k % 2 ? infinity : 50.0f});
+                    }
+                }
+            }
+        }
+    }
+    std::vector<Hit> want(rays.size());
+    std::vector<uint8_t> blocked(rays.size());
+    size_t hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        want[i] = intersect_closest(l.scene, l.accel, rays[i]);
+        blocked[i] = intersect_any(l.scene, l.accel, rays[i]);
+        hits += want[i].hit();
+    }
+    EXPECT_GT(hits, rays.size() / 20);
+    EXPECT_LT(hits, rays.size() / 2);
+    EXPECT_EQ(closest_block_mismatches<W>(l, rays, want), 0u);
+    EXPECT_EQ(any_block_mismatches<W>(l, rays, blocked), 0u);
 }
 
 TYPED_TEST(IntersectPacket, NoActiveLanesMeansNoHits) {
