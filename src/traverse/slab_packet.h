@@ -36,9 +36,10 @@ inline vmask<W> intersect_slab(const SlabPacket<W>& r, vec3 lo, vec3 hi, const v
         const vmask<W> neg = *inv[i] < vfloat<W>(0.0f);
         const vfloat<W> t_enter = select(neg, t_hi, t_lo);
         const vfloat<W> t_exit = select(neg, t_lo, t_hi) * vfloat<W>(slab_far_scale);
-        // interval
-        t0 = select(t_enter > t0, t_enter, t0);
-        t1 = select(t_exit < t1, t_exit, t1);
+        // interval: max(a, b) is a > b ? a : b and min(a, b) a < b ? a : b (simd/math.h), the
+        // scalar test's expressions, NaN distances included, in one instruction each
+        t0 = max(t_enter, t0);
+        t1 = min(t_exit, t1);
     }
     // closed test
     t_near = t0;
