@@ -250,27 +250,38 @@ constexpr bool has_secondary_rays = (F & (feature_reflection | feature_refractio
 
 /// shade_tile_sample for scenes without secondary rays: one pass, so the camera block is traced
 /// and each packet shaded where it stands, its lanes grouped by the object they hit (one
-/// material each), without the queue, the sort by material and the gathers; shadows are
-/// traced as blocks as there. The same arithmetic per ray, so the same image.
+/// material each), into value[] in registers; the shadow rays of each light sample stay in
+/// their packets and are traced as a block. No queue, sort by material, gathers or scatters;
+/// the same arithmetic per ray, in the same order, so the same image.
 template <int W, uint32_t F>
 void shade_camera_block(const Scene& scene, const Accel& accel, const ShadeParams& params,
                         int32_t sample, uint32_t seed, const RayPacket<W>* rays,
                         const vmask<W>* active, const vint<W>* slot, const vint<W>* pixel,
-                        int count, TileBuffers& b, ShadeCounts& counts) {
+                        int count, Vec3<W>* value, ShadeCounts& counts) {
     static_assert(!has_secondary_rays<F>);
     constexpr int max_packets = max_block_rays / W;
-    if (b.shadows.size() < scene.lights.size()) b.shadows.resize(scene.lights.size());
+    // one block of shadow rays per light sample, light j's from first[j] on (kept per thread)
+    thread_local std::vector<ShadowBlock<W>> shadows;
+    thread_local std::vector<int> first;
+    first.resize(scene.lights.size() + 1);
+    first[0] = 0;
+    for (size_t j = 0; j < scene.lights.size(); ++j)
+        first[j + 1] =
+            first[j] + (scene.lights[j].shadows ? light_sample_count(scene.lights[j], params) : 0);
+    if (shadows.size() < size_t(first.back())) shadows.resize(size_t(first.back()));
+    for (int k = 0; k < first.back(); ++k)
+        for (int p = 0; p < count; ++p) shadows[size_t(k)].lanes[p] = vmask<W>(false);
+
     HitPacket<W> hits[max_packets];
     intersect_closest_block(scene, accel, rays, active, hits, count);
-    const ShadeTarget target{.acc_r = b.acc_r,
-                             .acc_g = b.acc_g,
-                             .acc_b = b.acc_b,
-                             .shadows = b.shadows.data(),
-                             .next = nullptr,
-                             .next_inside = nullptr,
-                             .counts = &counts};
     const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
     for (int p = 0; p < count; ++p) {
+        value[p] = make_vec3<W>(0.0f, 0.0f, 0.0f);
+        const PacketTarget<W> target{.value = &value[p],
+                                     .shadows = shadows.data(),
+                                     .shadow_first = first.data(),
+                                     .packet = p,
+                                     .counts = &counts};
         const vmask<W> hit = mask_andnot(active[p], lt(hits[p].prim, vint<W>(0)));
         const vmask<W> miss = mask_andnot(active[p], hit);
         if (any(miss)) {
@@ -295,9 +306,18 @@ void shade_camera_block(const Scene& scene, const Accel& accel, const ShadeParam
             todo = mask_andnot(todo, same);
         }
     }
-    for (size_t j = 0; j < scene.lights.size(); ++j) {
-        trace_shadows<W>(scene, accel, b.shadows[j], true, b);
-        b.shadows[j].clear();
+    // each light sample's shadow rays as a block; free segments add their contribution, in the
+    // order of the wavefront's shadow queues (light by light, sample by sample)
+    vmask<W> occluded[max_packets];
+    for (int k = 0; k < first.back(); ++k) {
+        ShadowBlock<W>& b = shadows[size_t(k)];
+        for (int p = 0; p < count; ++p)
+            if (none(b.lanes[p])) b.rays[p].t_max = vfloat<W>(-1.0f);  // never written
+        intersect_any_block(scene, accel, b.rays, b.lanes, occluded, count);
+        for (int p = 0; p < count; ++p) {
+            const vmask<W> free = mask_andnot(b.lanes[p], occluded[p]);
+            value[p] = select(free, value[p] + b.contribution[p], value[p]);
+        }
     }
 }
 
@@ -367,31 +387,29 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 rays[p] = camera_ray<W>(frame, to_float(xi[p]) + jx, yf[p] + jy, lu, lv);
                 rays[p].t_max = select(active[p], rays[p].t_max, vfloat<W>(-1.0f));
             }
-            if (params.aov == Aov::color) {
+            if (params.aov != Aov::color) {
+                aov_values<W>(scene, accel, rays, active, count, params.aov, value);
+            } else if constexpr (!has_secondary_rays<F>) {
+                shade_camera_block<W, F>(scene, accel, shade, s, params.seed, rays, active, slot,
+                                         pixel, count, value, counts);
+            } else {
                 // camera rays into the queue, then passes until every path has ended
                 b.paths.clear();
                 std::fill(b.acc_r, b.acc_r + max_block_rays, 0.0f);
                 std::fill(b.acc_g, b.acc_g + max_block_rays, 0.0f);
                 std::fill(b.acc_b, b.acc_b + max_block_rays, 0.0f);
-                if constexpr (has_secondary_rays<F>) {
-                    const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
-                    const vint<W> zero(0), none(-1);
-                    for (int p = 0; p < count; ++p) {
-                        push_packet<W>(b.paths, rays[p].org, rays[p].dir, one, one, slot[p], zero,
-                                       zero, zero, none, zero, active[p]);
-                    }
-                    shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
-                } else {
-                    shade_camera_block<W, F>(scene, accel, shade, s, params.seed, rays, active,
-                                             slot, pixel, count, b, counts);
+                const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
+                const vint<W> zero(0), none(-1);
+                for (int p = 0; p < count; ++p) {
+                    push_packet<W>(b.paths, rays[p].org, rays[p].dir, one, one, slot[p], zero, zero,
+                                   zero, none, zero, active[p]);
                 }
+                shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
                 for (int p = 0; p < count; ++p) {
                     value[p].x = gather(b.acc_r, slot[p], active[p]);
                     value[p].y = gather(b.acc_g, slot[p], active[p]);
                     value[p].z = gather(b.acc_b, slot[p], active[p]);
                 }
-            } else {
-                aov_values<W>(scene, accel, rays, active, count, params.aov, value);
             }
             for (int p = 0; p < count; ++p) {
                 vmask<W> nan, inf;

@@ -53,6 +53,27 @@ struct ShadeTarget {
     ShadeCounts* counts = nullptr;
 };
 
+/// One light sample's shadow rays of a block of camera packets, kept in their packets (the
+/// one-pass kernels): ray, contribution if unoccluded, and the lanes that have one.
+template <int W>
+struct ShadowBlock {
+    RayPacket<W> rays[max_block_rays / W];
+    Vec3<W> contribution[max_block_rays / W];
+    vmask<W> lanes[max_block_rays / W];
+};
+
+/// What a batch writes to in the one-pass kernels (no secondary rays): the radiance of camera
+/// packet `packet` in registers and its shadow rays in place, one ShadowBlock per light sample
+/// (light j's samples from shadow_first[j] on).
+template <int W>
+struct PacketTarget {
+    Vec3<W>* value = nullptr;
+    ShadowBlock<W>* shadows = nullptr;
+    const int* shadow_first = nullptr;
+    int packet = 0;
+    ShadeCounts* counts = nullptr;
+};
+
 namespace shade_detail {
 
 /// v[idx[i]] for the first k lanes (the others get `fill`); idx has room for W entries.
@@ -88,6 +109,41 @@ inline void accumulate(const ShadeTarget& out, const vint<W>& slot, const Vec3<W
         out.acc_g[s] += get(value.y, i);
         out.acc_b[s] += get(value.z, i);
     });
+}
+
+/// The same for one camera packet's registers: its lanes are distinct pixels.
+template <int W>
+inline void accumulate(const PacketTarget<W>& out, const vint<W>&, const Vec3<W>& value,
+                       vmask<W> m) {
+    *out.value = select(m, *out.value + value, *out.value);
+}
+
+/// Queues the `lit` lanes' shadow rays towards sample i of light j (contribution added if the
+/// segment is free).
+template <int W>
+inline void add_shadow_rays(const ShadeTarget& out, size_t j, int, const Vec3<W>& origin,
+                            const Vec3<W>& dir, const vfloat<W>& distance,
+                            const Vec3<W>& contribution, const vint<W>& slot, vmask<W> lit) {
+    push_packet<W>(out.shadows[j], origin, dir, distance, contribution, slot, lit);
+}
+template <int W>
+inline void add_shadow_rays(const PacketTarget<W>& out, size_t j, int i, const Vec3<W>& origin,
+                            const Vec3<W>& dir, const vfloat<W>& distance,
+                            const Vec3<W>& contribution, const vint<W>&, vmask<W> lit) {
+    ShadowBlock<W>& b = out.shadows[out.shadow_first[j] + i];
+    const int p = out.packet;
+    const RayPacket<W> r{origin, dir, vfloat<W>(0.0f), distance};
+    if (none(b.lanes[p])) {  // the packet's first batch for this sample: every lane written
+        b.rays[p] = r;
+        b.contribution[p] = contribution;
+        b.lanes[p] = lit;
+        return;
+    }
+    b.rays[p].org = select(lit, r.org, b.rays[p].org);
+    b.rays[p].dir = select(lit, r.dir, b.rays[p].dir);
+    b.rays[p].t_max = select(lit, r.t_max, b.rays[p].t_max);
+    b.contribution[p] = select(lit, contribution, b.contribution[p]);
+    b.lanes[p] = mask_or(b.lanes[p], lit);
 }
 
 template <int W>
@@ -176,9 +232,10 @@ inline ShadeInput<W> gather_shade_input(const PathQueue& q, const HitArrays& h,
 
 /// Shades the `active` lanes of `in`, all hits of material `m`: adds their direct light and
 /// ambient term to the tile's slots, and queues shadow rays (per light) and secondary rays.
-template <int W, uint32_t F>
+/// Target: ShadeTarget (queues), or PacketTarget<W> for kernels without secondary rays.
+template <int W, uint32_t F, class Target>
 void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params, int32_t sample,
-                uint32_t seed, const ShadeInput<W>& in, vmask<W> active, const ShadeTarget& out) {
+                uint32_t seed, const ShadeInput<W>& in, vmask<W> active, const Target& out) {
     using namespace shade_detail;
     const ShadingOptions& o = scene.shading;
     const vfloat<W> zero(0.0f), one(1.0f);
@@ -359,7 +416,7 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
                 continue;
             }
             out.counts->shadow_rays += uint64_t(count(lit));
-            push_packet<W>(out.shadows[j], origin, ls.dir, ls.distance, contribution, slot, lit);
+            add_shadow_rays<W>(out, j, i, origin, ls.dir, ls.distance, contribution, slot, lit);
         }
     }
     if constexpr ((F & feature_glossy) != 0) {
