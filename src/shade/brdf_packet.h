@@ -186,6 +186,7 @@ template <int W>
 inline Vec3<W> specular_factor(const Material& m, BrdfScaling s, const Vec3<W>& c_s,
                                const Vec3<W>& n, const Vec3<W>& wi, const Vec3<W>& wo) {
     using namespace brdf_detail;
+    if (m.k_s == 0.0f) return Vec3<W>{};  // no specular term: the product below would be +0
     const vfloat<W> ci = dot(n, wi), zero(0.0f);
     vfloat<W> lobe = zero;
     switch (m.model) {

@@ -128,6 +128,7 @@ vec3 specular_factor(const Material& m, BrdfScaling s, vec3 n, vec3 wi, vec3 wo)
 }
 
 vec3 specular_factor(const Material& m, BrdfScaling s, vec3 c_s, vec3 n, vec3 wi, vec3 wo) {
+    if (m.k_s == 0.0f) return vec3(0.0f);  // no specular term: the product below would be +0
     const float ci = glm::dot(n, wi);
     float lobe = 0.0f;
     switch (m.model) {
