@@ -76,7 +76,9 @@ void render_scene(benchmark::State& state, const char* name, int width, Contende
     BENCHMARK(BM_##label##_Packet)->Unit(benchmark::kMillisecond)->UseRealTime(); \
     BENCHMARK(BM_##label##_PacketGeneric)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// diffuse + Phong only (no kernel features): the dragon frame and the built-in analytic scene
+// no kernel features: diffuse only (the built-in shapes), diffuse + Phong (the dragon frame,
+// the built-in scene)
+RAYLANE_SHADING_BENCH(Diffuse, "diffuse_shapes.json", 640)
 RAYLANE_SHADING_BENCH(Dragon, "dragon.json", 960)
 RAYLANE_SHADING_BENCH(Builtin, "builtin.json", 640)
 // glossy rays and area lights; glass; glass mesh with an area light; mirrors
