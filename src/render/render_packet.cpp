@@ -311,8 +311,12 @@ void shade_camera_block(const Scene& scene, const Accel& accel, const ShadeParam
     vmask<W> occluded[max_packets];
     for (int k = 0; k < first.back(); ++k) {
         ShadowBlock<W>& b = shadows[size_t(k)];
-        for (int p = 0; p < count; ++p)
+        bool some = false;  // a block of sky or unlit points has no shadow ray at all
+        for (int p = 0; p < count; ++p) {
             if (none(b.lanes[p])) b.rays[p].t_max = vfloat<W>(-1.0f);  // never written
+            some = some || any(b.lanes[p]);
+        }
+        if (!some) continue;
         intersect_any_block(scene, accel, b.rays, b.lanes, occluded, count);
         for (int p = 0; p < count; ++p) {
             const vmask<W> free = mask_andnot(b.lanes[p], occluded[p]);
