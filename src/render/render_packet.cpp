@@ -450,7 +450,6 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     return result;
 }
 
-#ifndef RAYLANE_SANITIZED
 /// The kernel feature set for a scene: groups of features, so 16 kernels cover every scene.
 uint32_t kernel_features(uint32_t scene) {
     uint32_t f = 0;
@@ -462,6 +461,7 @@ uint32_t kernel_features(uint32_t scene) {
     return f;
 }
 
+#ifndef RAYLANE_SANITIZED
 constexpr uint32_t group_secondary = feature_reflection | feature_refraction | feature_glossy;
 constexpr uint32_t group_camera = feature_environment | feature_lens;
 
@@ -504,8 +504,14 @@ template <int W>
 RenderResult render_packet_width(const Scene& scene, const Accel& accel,
                                  const RenderParams& params) {
 #ifdef RAYLANE_SANITIZED
-    // sanitizer builds compile the generic kernel only (16 kernels take too long to build there;
-    // the release tests check that every specialised kernel gives the generic kernel's image)
+    // sanitizer builds compile two kernels, 16 take too long to build there: the generic one and
+    // the one for scenes that use no kernel feature, so that the one-pass shading
+    // (shade_camera_block) runs under the sanitizers too; the release tests check that every
+    // specialised kernel gives the generic kernel's image
+    if constexpr (W == native_width) {
+        if (!params.generic_kernel && kernel_features(scene_features(scene)) == 0)
+            return render_packet_features<W, 0>(scene, accel, params);
+    }
     return render_packet_features<W, kernel_features_all>(scene, accel, params);
 #else
     if (params.generic_kernel || W != native_width)
