@@ -243,10 +243,12 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
     }
 }
 
-/// Whether kernels of feature set F spawn secondary rays (mirrors, glass, glossy lobes).
+/// The kernel features that spawn secondary rays (mirrors, glass, glossy lobes): one group.
+constexpr uint32_t group_secondary = feature_reflection | feature_refraction | feature_glossy;
+
+/// Whether kernels of feature set F spawn secondary rays (and so need the wavefront).
 template <uint32_t F>
-constexpr bool has_secondary_rays = (F & (feature_reflection | feature_refraction |
-                                          feature_glossy)) != 0;
+constexpr bool has_secondary_rays = (F & group_secondary) != 0;
 
 /// shade_tile_sample for scenes without secondary rays: one pass, so the camera block is traced
 /// and each packet shaded where it stands, its lanes grouped by the object they hit (one
@@ -364,9 +366,11 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 pixel[count] = vint<W>(y * cam.width) + xi[count];
                 slot[count] = vint<W>((y - tile.y0) * tile_w - tile.x0) + xi[count];
                 sum[count] = PixelSumPacket<W>{};
-                for_each_active(active[count], [&](int i) {
-                    b.pixel[get(slot[count], i)] = get(pixel[count], i);
-                });
+                if constexpr (has_secondary_rays<F>) {  // the wavefront's slot -> pixel map
+                    for_each_active(active[count], [&](int i) {
+                        b.pixel[get(slot[count], i)] = get(pixel[count], i);
+                    });
+                }
             }
         }
         ShadeCounts counts;
@@ -455,14 +459,12 @@ uint32_t kernel_features(uint32_t scene) {
     uint32_t f = 0;
     if (scene & feature_textures) f |= feature_textures;
     if (scene & feature_area_lights) f |= feature_area_lights;
-    if (scene & (feature_reflection | feature_refraction | feature_glossy))
-        f |= feature_reflection | feature_refraction | feature_glossy;
+    if (scene & group_secondary) f |= group_secondary;
     if (scene & (feature_environment | feature_lens)) f |= feature_environment | feature_lens;
     return f;
 }
 
 #ifndef RAYLANE_SANITIZED
-constexpr uint32_t group_secondary = feature_reflection | feature_refraction | feature_glossy;
 constexpr uint32_t group_camera = feature_environment | feature_lens;
 
 /// Calls the kernel compiled for exactly the feature groups in f.
