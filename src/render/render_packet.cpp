@@ -19,6 +19,13 @@
 namespace raylane {
 namespace {
 
+/// A camera packet covers packet_cols x packet_rows pixels of its tile: 4x4 at W = 16, 4x2 at 8,
+/// 2x2 at 4. A square's rays stay closer together through the BVH than a row's.
+template <int W>
+constexpr int packet_cols = W >= 8 ? 4 : (W >= 2 ? 2 : 1);
+template <int W>
+constexpr int packet_rows = W / packet_cols<W>;
+
 /// One sample's values of a non-colour AOV, for a block of packets (a tile).
 template <int W>
 void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
@@ -342,29 +349,40 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     std::atomic<uint64_t> shadow_rays{0}, reflection_rays{0}, refraction_rays{0}, glossy_rays{0},
         nan_samples{0}, inf_samples{0};
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
-    const vint<W> lane = lane_index<W>();
+    // a camera packet's lanes: column lane % packet_cols, row lane / packet_cols
+    alignas(64) int32_t cols[W], rows[W];
+    for (int i = 0; i < W; ++i) cols[i] = i % packet_cols<W>, rows[i] = i / packet_cols<W>;
+    const vint<W> lane_col = load<W>(cols), lane_row = load<W>(rows);
+    // offset of each lane's pixel from the packet's first in an array `stride` pixels wide
+    auto lane_offset = [&](int stride) {
+        alignas(64) int32_t offset[W];
+        for (int i = 0; i < W; ++i) offset[i] = rows[i] * stride + cols[i];
+        return load<W>(offset);
+    };
+    const vint<W> pixel_offset = lane_offset(cam.width);
     const ShadeParams shade{params.light_samples, params.glossy_samples};
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
         thread_local TileBuffers b;
-        // the tile as rows of packets of up to W pixels; lanes past its right edge are inactive
+        // the tile as packets of packet_cols x packet_rows pixels (4x4 at W = 16: compact ray
+        // bundles); lanes past the tile's edges are inactive
         constexpr int max_packets = max_block_rays / W;
         RayPacket<W> rays[max_packets];
         vmask<W> active[max_packets];
-        vint<W> pixel[max_packets], xi[max_packets], slot[max_packets];
+        vint<W> pixel[max_packets], xi[max_packets], yi[max_packets], slot[max_packets];
         PixelSumPacket<W> sum[max_packets];
         Vec3<W> value[max_packets];
-        vfloat<W> yf[max_packets];
         const int tile_w = tile.x1 - tile.x0;
+        const vint<W> slot_offset = lane_offset(tile_w);
         int count = 0;
-        for (int y = tile.y0; y < tile.y1; ++y) {
-            for (int x0 = tile.x0; x0 < tile.x1; x0 += W, ++count) {
-                const int lanes = std::min(W, tile.x1 - x0);
-                active[count] = mask_from_bits<W>(lanes >= 32 ? ~0u : (1u << lanes) - 1u);
-                xi[count] = vint<W>(x0) + lane;
-                yf[count] = vfloat<W>(float(y));
-                pixel[count] = vint<W>(y * cam.width) + xi[count];
-                slot[count] = vint<W>((y - tile.y0) * tile_w - tile.x0) + xi[count];
+        for (int y0 = tile.y0; y0 < tile.y1; y0 += packet_rows<W>) {
+            for (int x0 = tile.x0; x0 < tile.x1; x0 += packet_cols<W>, ++count) {
+                xi[count] = vint<W>(x0) + lane_col;
+                yi[count] = vint<W>(y0) + lane_row;
+                active[count] =
+                    mask_and(lt(xi[count], vint<W>(tile.x1)), lt(yi[count], vint<W>(tile.y1)));
+                pixel[count] = vint<W>(y0 * cam.width + x0) + pixel_offset;
+                slot[count] = vint<W>((y0 - tile.y0) * tile_w + (x0 - tile.x0)) + slot_offset;
                 sum[count] = PixelSumPacket<W>{};
                 if constexpr (has_secondary_rays<F>) {  // the wavefront's slot -> pixel map
                     for_each_active(active[count], [&](int i) {
@@ -392,7 +410,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                         lv = random_float<W>(pixel[p], si, vint<W>(dim_lens_v), seed);
                     }
                 }
-                rays[p] = camera_ray<W>(frame, to_float(xi[p]) + jx, yf[p] + jy, lu, lv);
+                rays[p] = camera_ray<W>(frame, to_float(xi[p]) + jx, to_float(yi[p]) + jy, lu, lv);
                 rays[p].t_max = select(active[p], rays[p].t_max, vfloat<W>(-1.0f));
             }
             if (params.aov != Aov::color) {
@@ -429,9 +447,9 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
         }
         for (int p = 0; p < count; ++p) {
             const Vec3<W> mean = pixel_mean<W>(sum[p]);
-            const int x0 = get(xi[p], 0), y = static_cast<int>(get(yf[p], 0));
             for_each_active(active[p], [&](int i) {
-                result.film.at(x0 + i, y) = vec3(get(mean.x, i), get(mean.y, i), get(mean.z, i));
+                result.film.at(get(xi[p], i), get(yi[p], i)) =
+                    vec3(get(mean.x, i), get(mean.y, i), get(mean.z, i));
             });
         }
         shadow_rays += counts.shadow_rays;
