@@ -445,12 +445,14 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 infs += static_cast<uint64_t>(raylane::count(mask_and(active[p], inf)));
             }
         }
+        vec3* film = result.film.pixels.data();  // pixel[p] holds each lane's index in it
         for (int p = 0; p < count; ++p) {
             const Vec3<W> mean = pixel_mean<W>(sum[p]);
-            for_each_active(active[p], [&](int i) {
-                result.film.at(get(xi[p], i), get(yi[p], i)) =
-                    vec3(get(mean.x, i), get(mean.y, i), get(mean.z, i));
-            });
+            alignas(64) float r[W], g[W], bl[W];
+            alignas(64) int32_t at[W];
+            store_aligned(r, mean.x), store_aligned(g, mean.y), store_aligned(bl, mean.z);
+            store_aligned(at, pixel[p]);
+            for_each_active(active[p], [&](int i) { film[at[i]] = vec3(r[i], g[i], bl[i]); });
         }
         shadow_rays += counts.shadow_rays;
         reflection_rays += counts.reflection_rays;
