@@ -594,14 +594,14 @@ struct BlockBounds {
 };
 
 template <int W>
-BlockBounds make_block_bounds(const RayPacket<W>* rays, const SlabPacket<W>* sr,
-                              const vmask<W>* active, int count) {
+BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, int count) {
     // Lane-wise minima and maxima over the packets first, one horizontal reduction per bound at
     // the end: the same set of active, non-NaN lanes as hmin/hmax per packet, 13 reductions per
-    // block instead of 13 per packet.
+    // block instead of 13 per packet. The reciprocals' bounds come from the directions' (below),
+    // so a block culled at the root never divides.
     const vfloat<W> inf(infinity), neg_inf(-infinity);
     vfloat<W> t_min = inf, org_lo[3] = {inf, inf, inf}, org_hi[3] = {neg_inf, neg_inf, neg_inf};
-    vfloat<W> inv_lo[3] = {inf, inf, inf}, inv_hi[3] = {neg_inf, neg_inf, neg_inf};
+    vfloat<W> dir_lo[3] = {inf, inf, inf}, dir_hi[3] = {neg_inf, neg_inf, neg_inf};
     BlockBounds b;
     bool seen = false;
     for (int p = 0; p < count; ++p) {
@@ -614,17 +614,17 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const SlabPacket<W>* sr,
             acc = max(acc, select(mask_andnot(m, is_nan(x)), x, neg_inf));
         };
         lo(t_min, rays[p].t_min);
-        const vfloat<W>* org[3] = {&sr[p].org.x, &sr[p].org.y, &sr[p].org.z};
-        const vfloat<W>* inv[3] = {&sr[p].inv_dir.x, &sr[p].inv_dir.y, &sr[p].inv_dir.z};
+        const vfloat<W>* org[3] = {&rays[p].org.x, &rays[p].org.y, &rays[p].org.z};
+        const vfloat<W>* dir[3] = {&rays[p].dir.x, &rays[p].dir.y, &rays[p].dir.z};
         for (int k = 0; k < 3; ++k) {
             lo(org_lo[k], *org[k]);
             hi(org_hi[k], *org[k]);
-            lo(inv_lo[k], *inv[k]);
-            hi(inv_hi[k], *inv[k]);
+            lo(dir_lo[k], *dir[k]);
+            hi(dir_hi[k], *dir[k]);
         }
         if (!seen) {
             const int lane = first_active(m);
-            for (int k = 0; k < 3; ++k) b.dir_neg[k] = get(*inv[k], lane) < 0.0f;
+            for (int k = 0; k < 3; ++k) b.dir_neg[k] = 1.0f / get(*dir[k], lane) < 0.0f;
             seen = true;
         }
     }
@@ -632,13 +632,15 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const SlabPacket<W>* sr,
     for (int k = 0; k < 3; ++k) {
         b.org_lo[k] = hmin(org_lo[k]);
         b.org_hi[k] = hmax(org_hi[k]);
-        b.inv_lo[k] = hmin(inv_lo[k]);
-        b.inv_hi[k] = hmax(inv_hi[k]);
-    }
-    for (int k = 0; k < 3; ++k) {
+        // Directions of one sign, strictly (no zero): 1/x is correctly rounded and decreasing,
+        // so these are exactly the bounds of the lanes' reciprocals. A zero, mixed signs or a
+        // reciprocal that overflows (as a lane's infinite one did) make the axis unusable.
+        const float d_lo = hmin(dir_lo[k]), d_hi = hmax(dir_hi[k]);
+        b.inv_lo[k] = 1.0f / d_hi;
+        b.inv_hi[k] = 1.0f / d_lo;
         const bool finite = std::isfinite(b.inv_lo[k]) && std::isfinite(b.inv_hi[k]) &&
                             std::isfinite(b.org_lo[k]) && std::isfinite(b.org_hi[k]);
-        b.usable[k] = finite && (b.inv_lo[k] > 0.0f || b.inv_hi[k] < 0.0f);
+        b.usable[k] = finite && (d_lo > 0.0f || d_hi < 0.0f);
     }
     return b;
 }
@@ -781,13 +783,8 @@ void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&&
 template <int W>
 void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
                              const vmask<W>* active, HitPacket<W>* hits, int count) {
-    SlabPacket<W> sr[max_block_rays / W];
-    vfloat<W> limit[max_block_rays / W];
-    for (int p = 0; p < count; ++p) {
-        hits[p] = HitPacket<W>{};
-        sr[p] = make_slab_ray(rays[p]);
-    }
-    const BlockBounds bounds = make_block_bounds(rays, sr, active, count);
+    for (int p = 0; p < count; ++p) hits[p] = HitPacket<W>{};
+    const BlockBounds bounds = make_block_bounds(rays, active, count);
     for (uint32_t object : accel.unbounded) {
         if (!block_may_hit_unbounded(scene, bounds, scene.objects[object])) continue;
         for (int p = 0; p < count; ++p)
@@ -795,8 +792,14 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
                 intersect_object_closest(scene, accel, object, rays[p], active[p], hits[p],
                                          static_cast<vint<W>*>(nullptr));
     }
-    if (accel.top.nodes.empty()) return;
-    for (int p = 0; p < count; ++p) limit[p] = t_limit(rays[p], hits[p]);
+    // the BVH: only when the block may meet its root box
+    if (accel.top.nodes.empty() || !block_may_hit(bounds, accel.top.nodes[0])) return;
+    SlabPacket<W> sr[max_block_rays / W];
+    vfloat<W> limit[max_block_rays / W];
+    for (int p = 0; p < count; ++p) {
+        sr[p] = make_slab_ray(rays[p]);
+        limit[p] = t_limit(rays[p], hits[p]);
+    }
     auto test = [&](int p, const BvhNode& node) {
         vfloat<W> t_near;
         return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
@@ -855,15 +858,10 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
 template <int W>
 void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
                          const vmask<W>* active, vmask<W>* occluded, int count) {
-    SlabPacket<W> sr[max_block_rays / W];
-    vmask<W> open[max_block_rays / W];
-    for (int p = 0; p < count; ++p) {
-        sr[p] = make_slab_ray(rays[p]);
-        occluded[p] = mask_and(active[p], mask_not(active[p]));
-    }
+    for (int p = 0; p < count; ++p) occluded[p] = mask_and(active[p], mask_not(active[p]));
     // the bounds of the active rays, also for the BVH (those the unbounded objects occlude are
     // few: a bound over a few more rays still holds)
-    const BlockBounds bounds = make_block_bounds(rays, sr, active, count);
+    const BlockBounds bounds = make_block_bounds(rays, active, count);
     for (uint32_t object : accel.unbounded) {
         if (!block_may_hit_unbounded(scene, bounds, scene.objects[object])) continue;
         for (int p = 0; p < count; ++p) {
@@ -873,8 +871,14 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                                       intersect_object_any(scene, accel, object, rays[p], lanes));
         }
     }
-    for (int p = 0; p < count; ++p) open[p] = mask_andnot(active[p], occluded[p]);
-    if (accel.top.nodes.empty()) return;
+    // the BVH: only when the block may meet its root box
+    if (accel.top.nodes.empty() || !block_may_hit(bounds, accel.top.nodes[0])) return;
+    SlabPacket<W> sr[max_block_rays / W];
+    vmask<W> open[max_block_rays / W];
+    for (int p = 0; p < count; ++p) {
+        sr[p] = make_slab_ray(rays[p]);
+        open[p] = mask_andnot(active[p], occluded[p]);
+    }
     auto test = [&](int p, const BvhNode& node) {
         vfloat<W> t_near;
         return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
