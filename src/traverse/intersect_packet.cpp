@@ -607,12 +607,9 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
     for (int p = 0; p < count; ++p) {
         if (none(active[p])) continue;
         const vmask<W> m = active[p];
-        auto lo = [&](vfloat<W>& acc, const vfloat<W>& x) {
-            acc = min(acc, select(mask_andnot(m, is_nan(x)), x, inf));
-        };
-        auto hi = [&](vfloat<W>& acc, const vfloat<W>& x) {
-            acc = max(acc, select(mask_andnot(m, is_nan(x)), x, neg_inf));
-        };
+        // min(x, acc) is x < acc ? x : acc (simd/math.h): a NaN lane keeps acc
+        auto lo = [&](vfloat<W>& acc, const vfloat<W>& x) { acc = select(m, min(x, acc), acc); };
+        auto hi = [&](vfloat<W>& acc, const vfloat<W>& x) { acc = select(m, max(x, acc), acc); };
         lo(t_min, rays[p].t_min);
         const vfloat<W>* org[3] = {&rays[p].org.x, &rays[p].org.y, &rays[p].org.z};
         const vfloat<W>* dir[3] = {&rays[p].dir.x, &rays[p].dir.y, &rays[p].dir.z};

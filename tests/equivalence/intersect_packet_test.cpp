@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -256,9 +257,12 @@ TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
     constexpr int W = TypeParam::value;
     const std::shared_ptr<Loaded> l = load("builtin");
     std::vector<Ray> rays;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
     const vec3 dirs[] = {{1, 0, 0},           {0, -1, 0},      {-0.0f, 0, 1}, {0, 0, -1},
-                         {0.0f, -0.0f, 1.0f}, {1e-30f, -1, 0}, {1, 1, 0},     {0, -1, 1}};
-    const vec3 origins[] = {{0, 0, -5}, {0, 3, 0}, {0, 0, 0}, {-1, 0.5f, 2}, {1, -1, 5}};
+                         {0.0f, -0.0f, 1.0f}, {1e-30f, -1, 0}, {1, 1, 0},     {0, -1, 1},
+                         {nan, 0.2f, 1}};  // a NaN lane: no hit, and no effect on its block
+    const vec3 origins[] = {{0, 0, -5},    {0, 3, 0},  {0, 0, 0},
+                            {-1, 0.5f, 2}, {1, -1, 5}, {nan, 0, -5}};
     const float t_maxes[] = {infinity, 0.0f, 1.0f, 100.0f};
     for (vec3 o : origins)
         for (vec3 d : dirs)
