@@ -42,14 +42,14 @@ const Mesh* model(const std::string& file, int level) {
     return &cache.emplace(key, std::move(m)).first->second;
 }
 
-void BM_BuildMedian(benchmark::State& state, const char* file, int level) {
+void build_mesh(benchmark::State& state, const char* file, int level, BvhBuild method) {
     const Mesh* mesh = model(file, level);
     if (!mesh) {
         state.SkipWithError("model not found");
         return;
     }
     for (auto _ : state) {
-        MeshAccel accel = build_mesh_accel(*mesh, BuildParams{});
+        MeshAccel accel = build_mesh_accel(*mesh, BuildParams{.method = method});
         benchmark::DoNotOptimize(accel.bvh.nodes.data());
     }
     const double n = static_cast<double>(mesh->tris.size());
@@ -57,6 +57,15 @@ void BM_BuildMedian(benchmark::State& state, const char* file, int level) {
     state.counters["triangles/s"] =
         benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
     state.SetComplexityN(static_cast<int64_t>(n));
+}
+
+void BM_BuildMedian(benchmark::State& state, const char* file, int level) {
+    build_mesh(state, file, level, BvhBuild::median);
+}
+
+/// The binned SAH build (a comparison option), the same way.
+void BM_BuildSah(benchmark::State& state, const char* file, int level) {
+    build_mesh(state, file, level, BvhBuild::sah);
 }
 
 /// The first build of the process, once: what `raylane render` and `raylane info` pay, every
@@ -94,6 +103,7 @@ BENCHMARK_CAPTURE(BM_BuildMedian, bunny, "bunny.ply", 0)->Unit(benchmark::kMilli
 BENCHMARK_CAPTURE(BM_BuildMedian, dragon_100k, "dragon.ply", 0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BuildMedian, dragon_400k, "dragon.ply", 1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BuildMedian, dragon_1600k, "dragon.ply", 2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BuildSah, dragon_100k, "dragon.ply", 0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BuildMedianFirst, dragon_100k, "dragon.ply", 0)
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);

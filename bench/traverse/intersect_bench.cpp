@@ -55,7 +55,8 @@ RaySoa make_soa(const std::vector<Ray>& rays) {
 
 struct Workload {
     Scene scene;
-    Accel accel;
+    Accel accel;      ///< the median split (the report's build; the rays' reference)
+    Accel accel_sah;  ///< the binned SAH build, for the Sah contenders
     std::vector<Ray> primary, shadow, bounce;
     RaySoa primary_soa, shadow_soa, bounce_soa;
 #ifdef RAYLANE_HAVE_EMBREE
@@ -118,6 +119,7 @@ Workload* workload(const std::string& name) {
         w->scene.camera.width = 1920;
         w->scene.camera.height = 1080;
         w->accel = build_accel(w->scene, BuildParams{});
+        w->accel_sah = build_accel(w->scene, BuildParams{.method = BvhBuild::sah});
     } catch (const std::exception&) {
         return (cache[name] = nullptr).get();
     }
@@ -207,9 +209,11 @@ void bench_scalar(benchmark::State& state, std::string scene, std::string set, i
 }
 
 template <int W>
-void bench_packet(benchmark::State& state, std::string scene, std::string set, int threads) {
+void bench_packet(benchmark::State& state, std::string scene, std::string set, int threads,
+                  BvhBuild build) {
     Workload* w = workload(scene);
     if (!w) return state.SkipWithError("scene or model not found");
+    const Accel& accel = build == BvhBuild::sah ? w->accel_sah : w->accel;
     const std::vector<Ray>& rays = rays_of(*w, set);
     const bool any_hit = set == "shadow";
     const RaySoa& soa = soa_of(*w, set);
@@ -218,9 +222,9 @@ void bench_packet(benchmark::State& state, std::string scene, std::string set, i
             vmask<W> active;
             const RayPacket<W> p = load_packet<W>(soa, i, active);
             if (any_hit) {
-                benchmark::DoNotOptimize(intersect_any(w->scene, w->accel, p, active));
+                benchmark::DoNotOptimize(intersect_any(w->scene, accel, p, active));
             } else {
-                HitPacket<W> h = intersect_closest(w->scene, w->accel, p, active);
+                HitPacket<W> h = intersect_closest(w->scene, accel, p, active);
                 benchmark::DoNotOptimize(h);
             }
         }
@@ -229,9 +233,11 @@ void bench_packet(benchmark::State& state, std::string scene, std::string set, i
 
 /// Blocks of max_block_rays consecutive rays (a 16x16 tile for the primary rays).
 template <int W>
-void bench_block(benchmark::State& state, std::string scene, std::string set, int threads) {
+void bench_block(benchmark::State& state, std::string scene, std::string set, int threads,
+                 BvhBuild build) {
     Workload* w = workload(scene);
     if (!w) return state.SkipWithError("scene or model not found");
+    const Accel& accel = build == BvhBuild::sah ? w->accel_sah : w->accel;
     const std::vector<Ray>& rays = rays_of(*w, set);
     const bool any_hit = set == "shadow";
     static_assert(chunk % max_block_rays == 0);
@@ -246,10 +252,10 @@ void bench_block(benchmark::State& state, std::string scene, std::string set, in
             for (size_t i = b; i < b + max_block_rays; i += W, ++count)
                 p[count] = load_packet<W>(soa, i, active[count]);
             if (any_hit) {
-                intersect_any_block(w->scene, w->accel, p, active, occluded, count);
+                intersect_any_block(w->scene, accel, p, active, occluded, count);
                 benchmark::DoNotOptimize(occluded[0]);
             } else {
-                intersect_closest_block(w->scene, w->accel, p, active, hits, count);
+                intersect_closest_block(w->scene, accel, p, active, hits, count);
                 benchmark::DoNotOptimize(hits[0]);
             }
         }
@@ -334,20 +340,26 @@ void bench_embree16(benchmark::State& state, std::string scene, std::string set,
 }
 #endif
 
+/// Packet<W>, or Packet<W>Sah through the binned SAH build.
 template <int W>
-void register_packet(const std::string& scene, const std::string& set, int threads) {
-    const std::string suffix = "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
+void register_packet(const std::string& scene, const std::string& set, int threads,
+                     BvhBuild build = BvhBuild::median) {
+    const std::string suffix = (build == BvhBuild::sah ? "Sah/" : "/") + scene + "/" + set +
+                               "/threads:" + std::to_string(threads);
     benchmark::RegisterBenchmark(("BM_Intersect_Packet" + std::to_string(W) + suffix).c_str(),
-                                 bench_packet<W>, scene, set, threads)
+                                 bench_packet<W>, scene, set, threads, build)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
 }
 
+/// Block<W>, or Block<W>Sah through the binned SAH build.
 template <int W>
-void register_block(const std::string& scene, const std::string& set, int threads) {
-    const std::string suffix = "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
+void register_block(const std::string& scene, const std::string& set, int threads,
+                    BvhBuild build = BvhBuild::median) {
+    const std::string suffix = (build == BvhBuild::sah ? "Sah/" : "/") + scene + "/" + set +
+                               "/threads:" + std::to_string(threads);
     benchmark::RegisterBenchmark(("BM_Intersect_Block" + std::to_string(W) + suffix).c_str(),
-                                 bench_block<W>, scene, set, threads)
+                                 bench_block<W>, scene, set, threads, build)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
 }
@@ -368,6 +380,15 @@ void register_all() {
                 if constexpr (width_supported<16>) register_packet<16>(scene, set, threads);
                 if constexpr (width_supported<8>) register_block<8>(scene, set, threads);
                 if constexpr (width_supported<16>) register_block<16>(scene, set, threads);
+                // the widest packets and blocks again through the SAH build (a comparison
+                // option: the rays are the same, the tree is not the report's)
+                if constexpr (width_supported<16>) {
+                    register_packet<16>(scene, set, threads, BvhBuild::sah);
+                    register_block<16>(scene, set, threads, BvhBuild::sah);
+                } else if constexpr (width_supported<8>) {
+                    register_packet<8>(scene, set, threads, BvhBuild::sah);
+                    register_block<8>(scene, set, threads, BvhBuild::sah);
+                }
 #ifdef RAYLANE_HAVE_EMBREE
                 benchmark::RegisterBenchmark(("BM_Intersect_Embree1" + suffix).c_str(),
                                              bench_embree1, scene, set, threads)

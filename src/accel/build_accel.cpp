@@ -68,7 +68,8 @@ Accel build_accel(const Scene& scene, const BuildParams& params) {
         bounded.push_back(accel.object_bounds[i]);
         bounded_ids.push_back(static_cast<uint32_t>(i));
     }
-    accel.top = build_bvh_median(bounded, params);
+    accel.top = params.method == BvhBuild::sah ? build_bvh_sah(bounded, params)
+                                               : build_bvh_median(bounded, params);
     for (uint32_t& id : accel.top.prim_ids) id = bounded_ids[id];  // leaf order -> object index
     return accel;
 }

@@ -345,6 +345,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
     MeshAccel accel;
     const size_t n = mesh.tris.size();
     if (n == 0) return accel;
+    if (params.method == BvhBuild::sah) return build_mesh_accel_sah(mesh, params);
     const uvec3* tris = mesh.tris.data();
     const vec3* positions = mesh.positions.data();
     // the vertex array, 36 bytes per triangle, is lent to the build as its nine arrays before

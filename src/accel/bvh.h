@@ -31,14 +31,25 @@ struct Bvh {
     std::vector<uint32_t> prim_ids;
 };
 
+/// How the BVHs are built: the report's median split (the default), or binned SAH as a
+/// comparison option.
+enum class BvhBuild { median, sah };
+
 struct BuildParams {
     int max_leaf_size = 4;  ///< leaves hold at most this many primitives (1 .. 65535)
+    BvhBuild method = BvhBuild::median;
 };
 
 /// Median split (the report's build): split along the longest axis of the centroid bounds at the
 /// median centroid (std::nth_element), equal halves, until a node has <= max_leaf_size
 /// primitives. O(n log n).
 Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params);
+
+/// Binned SAH (16 bins per axis, the cheapest split of the three axes; a node visit costs three
+/// primitive tests), a leaf when that is cheaper and the node holds at most max_leaf_size
+/// primitives. Below depth 31 it halves at the median, so the tree stays within
+/// the traversal stack. Same node layout and order rules as build_bvh_median.
+Bvh build_bvh_sah(std::span<const Aabb> prim_bounds, const BuildParams& params);
 
 /// Triangle vertices in BVH leaf order, ready for the watertight test (36 bytes each).
 struct TriangleVerts {
@@ -59,7 +70,10 @@ struct Accel {
     std::vector<MeshAccel> meshes;    ///< one per Scene::meshes entry
 };
 
+/// A mesh's BVH (params.method: median split or SAH) and its vertices in leaf order.
 MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params);
+/// build_mesh_accel's SAH form (build_sah.cpp).
+MeshAccel build_mesh_accel_sah(const Mesh& mesh, const BuildParams& params);
 Accel build_accel(const Scene& scene, const BuildParams& params);
 
 /// World-space bounds of one object (a transformed shape's box covers its 8 corners).

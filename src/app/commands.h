@@ -15,6 +15,12 @@ void add_info_command(CLI::App& app, int& exit_code);
 void add_compare_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
 
+/// Adds --bvh to a command: median (the report's build, the default) or sah (binned SAH, a
+/// comparison option).
+void add_bvh_option(CLI::App* cmd, std::string& bvh);
+/// The build parameters a --bvh value names.
+BuildParams build_params(const std::string& bvh);
+
 /// Applies --width/--height to the camera; one alone keeps the aspect ratio.
 void apply_resolution(Camera& camera, int width, int height);
 

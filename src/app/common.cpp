@@ -8,6 +8,19 @@
 
 namespace raylane {
 
+void add_bvh_option(CLI::App* cmd, std::string& bvh) {
+    cmd->add_option("--bvh", bvh,
+                    "BVH build: median (the report's median split, default) or sah (binned SAH, "
+                    "for comparison)")
+        ->check(CLI::IsMember({"median", "sah"}));
+}
+
+BuildParams build_params(const std::string& bvh) {
+    BuildParams params;
+    params.method = bvh == "sah" ? BvhBuild::sah : BvhBuild::median;
+    return params;
+}
+
 Scene load_scene_or_builtin(const std::string& path) {
     return path.empty() ? make_builtin_scene() : load_scene(path);
 }

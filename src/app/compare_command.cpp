@@ -12,7 +12,7 @@ namespace raylane {
 namespace {
 
 struct CompareOptions {
-    std::string scene_path;
+    std::string scene_path, bvh = "median";
     int spp = 0, threads = 0, width = 0, height = 0;
     double tolerance = 2e-3;
     size_t id_allowance = 0;
@@ -21,7 +21,7 @@ struct CompareOptions {
 int run_compare(const CompareOptions& o) {
     Scene scene = load_scene_or_builtin(o.scene_path);
     apply_resolution(scene.camera, o.width, o.height);
-    const Accel accel = build_accel(scene, BuildParams{});
+    const Accel accel = build_accel(scene, build_params(o.bvh));
     RenderParams params;
     params.spp = o.spp > 0 ? o.spp : scene.camera.spp;
     params.threads = o.threads;
@@ -74,6 +74,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--width", o->width, "image width")->check(CLI::Range(1, 32768));
     cmd->add_option("--height", o->height, "image height")->check(CLI::Range(1, 32768));
+    add_bvh_option(cmd, o->bvh);
     cmd->add_option("--tolerance", o->tolerance,
                     "largest allowed per-channel difference (linear; default 2e-3)")
         ->check(CLI::Range(0.0, 1e30));

@@ -17,12 +17,12 @@ void print_bvh(const char* label, const BvhStats& s, size_t triangles, size_t ex
                     double(bytes) / double(triangles), double(bytes) / (1024.0 * 1024.0));
 }
 
-int run_info(const std::string& path) {
+int run_info(const std::string& path, const std::string& bvh) {
     const double t_load = now_seconds();
     const Scene scene = load_scene_or_builtin(path);
     const double load_ms = elapsed_ms(t_load);
     const double t_build = now_seconds();
-    const Accel accel = build_accel(scene, BuildParams{});
+    const Accel accel = build_accel(scene, build_params(bvh));
     const double build_ms = elapsed_ms(t_build);
 
     const Camera& c = scene.camera;
@@ -57,7 +57,8 @@ int run_info(const std::string& path) {
     total += top.bytes;
     std::printf("memory     %.2f MiB of BVH and triangle data\n",
                 double(total) / (1024.0 * 1024.0));
-    std::printf("time       load %.1f ms, build %.1f ms\n", load_ms, build_ms);
+    std::printf("time       load %.1f ms, build %.1f ms (%s)\n", load_ms, build_ms,
+                bvh == "sah" ? "binned SAH" : "median split");
     return 0;
 }
 
@@ -65,10 +66,12 @@ int run_info(const std::string& path) {
 
 void add_info_command(CLI::App& app, int& exit_code) {
     auto path = std::make_shared<std::string>();
+    auto bvh = std::make_shared<std::string>("median");
     CLI::App* cmd = app.add_subcommand("info", "print scene and BVH statistics");
     cmd->add_option("scene", *path, "scene JSON file (default: the built-in scene)")
         ->check(CLI::ExistingFile);
-    cmd->callback([path, &exit_code] { exit_code = run_info(*path); });
+    add_bvh_option(cmd, *bvh);
+    cmd->callback([path, bvh, &exit_code] { exit_code = run_info(*path, *bvh); });
 }
 
 }  // namespace raylane

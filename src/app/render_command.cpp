@@ -18,7 +18,7 @@ namespace raylane {
 namespace {
 
 struct RenderOptions {
-    std::string scene_path, output, aov = "color", path = "packet";
+    std::string scene_path, output, aov = "color", path = "packet", bvh = "median";
     int spp = 0, threads = 0, width = 0, height = 0;
     uint32_t seed = 0;
     bool quiet = false;
@@ -47,7 +47,7 @@ int run_render(const RenderOptions& o) {
     params.progress = !o.quiet;
 
     const double t_build = now_seconds();
-    const Accel accel = build_accel(scene, BuildParams{});
+    const Accel accel = build_accel(scene, build_params(o.bvh));
     const double build_ms = elapsed_ms(t_build);
 
     RenderResult result = o.path == "scalar" ? render_scalar(scene, accel, params)
@@ -69,6 +69,7 @@ int run_render(const RenderOptions& o) {
     else
         std::printf("path       packet (W = %d), %d threads\n", native_width, threads);
     std::printf("features   %s\n", feature_names(scene_features(scene)).c_str());
+    if (o.bvh != "median") std::printf("bvh        %s\n", o.bvh.c_str());
     std::printf("rays       %llu primary, %llu shadow",
                 static_cast<unsigned long long>(s.primary_rays),
                 static_cast<unsigned long long>(s.shadow_rays));
@@ -117,6 +118,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--seed", o->seed, "seed of the sample hash");
     cmd->add_option("--path", o->path, "renderer: packet (default) or scalar (the reference)")
         ->check(CLI::IsMember({"packet", "scalar"}));
+    add_bvh_option(cmd, o->bvh);
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
     cmd->add_flag("--strict", o->strict,
                   "exit with status 3 when any sample is NaN or infinite (the image is written, "

@@ -62,8 +62,9 @@ TEST(Cli, HelpWorksForEveryCommand) {
 }
 
 TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
-    for (const char* args : {"render --spp 0", "render --aov shiny", "render --path fast",
-                             "frobnicate", "render /no/such/scene.json", "render --width -3"}) {
+    for (const char* args :
+         {"render --spp 0", "render --aov shiny", "render --path fast", "frobnicate",
+          "render /no/such/scene.json", "render --width -3", "render --bvh octree", "info --bvh"}) {
         const CliRun r = run(args);
         EXPECT_EQ(r.code, 2) << args;
         EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
@@ -196,6 +197,22 @@ TEST(Cli, CompareAgreesOnTheBuiltinScene) {
     EXPECT_EQ(r.code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("agree"), std::string::npos);
     EXPECT_NE(r.out.find("PSNR"), std::string::npos);
+}
+
+TEST(Cli, SahBuildIsAnOptionOfInfoRenderAndCompare) {
+    const CliRun info = run("info --bvh sah");
+    EXPECT_EQ(info.code, 0) << info.err;
+    EXPECT_NE(info.out.find("binned SAH"), std::string::npos) << info.out;
+    EXPECT_NE(run("info").out.find("median split"), std::string::npos);
+    const CliRun compare = run("compare --width 64 --bvh sah");
+    EXPECT_EQ(compare.code, 0) << compare.out << compare.err;
+    EXPECT_NE(compare.out.find("agree"), std::string::npos);
+    const std::string png =
+        (std::filesystem::temp_directory_path() / "raylane_cli_sah.png").string();
+    const CliRun render = run("render --width 48 -q --bvh sah -o " + png);
+    EXPECT_EQ(render.code, 0) << render.err;
+    EXPECT_NE(render.out.find("bvh        sah"), std::string::npos) << render.out;
+    std::filesystem::remove(png);
 }
 
 }  // namespace

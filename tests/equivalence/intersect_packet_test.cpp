@@ -35,20 +35,22 @@ struct Loaded {
 };
 
 /// A scene from scenes/ (nullptr when its model is absent).
-std::shared_ptr<Loaded> load(const std::string& name) {
-    static std::map<std::string, std::shared_ptr<Loaded>> cache;
-    if (auto it = cache.find(name); it != cache.end()) return it->second;
+/// A scene of scenes/ (or the built-in one) with its BVHs built by `method`.
+std::shared_ptr<Loaded> load(const std::string& name, BvhBuild method = BvhBuild::median) {
+    static std::map<std::pair<std::string, BvhBuild>, std::shared_ptr<Loaded>> cache;
+    const auto key = std::make_pair(name, method);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
     std::shared_ptr<Loaded> l;
     try {
         l = std::make_shared<Loaded>();
         l->scene = name == "builtin"
                        ? make_builtin_scene()
                        : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
-        l->accel = build_accel(l->scene, BuildParams{});
+        l->accel = build_accel(l->scene, BuildParams{.method = method});
     } catch (const std::exception&) {
         l = nullptr;
     }
-    return cache[name] = l;
+    return cache[key] = l;
 }
 
 /// The three ray sets of a scene, with the scalar path's answers.
@@ -199,10 +201,11 @@ template <class T>
 class IntersectPacket : public ::testing::Test {};
 TYPED_TEST_SUITE(IntersectPacket, Widths, WidthName);
 
-const RaySets& ray_sets(const std::string& name) {
-    static std::map<std::string, RaySets> cache;
-    if (auto it = cache.find(name); it != cache.end()) return it->second;
-    return cache[name] = make_ray_sets(*load(name));
+const RaySets& ray_sets(const std::string& name, BvhBuild method) {
+    static std::map<std::pair<std::string, BvhBuild>, RaySets> cache;
+    const auto key = std::make_pair(name, method);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+    return cache[key] = make_ray_sets(*load(name, method));
 }
 
 // The allowance for rays within rounding of a shared edge: none. The packet triangle test does
@@ -210,10 +213,11 @@ const RaySets& ray_sets(const std::string& name) {
 void check_scene(const std::string& name,
                  size_t (*closest)(const Loaded&, const std::vector<Ray>&, const std::vector<Hit>&),
                  size_t (*any_hit)(const Loaded&, const std::vector<Ray>&,
-                                   const std::vector<uint8_t>&)) {
-    const std::shared_ptr<Loaded> l = load(name);
+                                   const std::vector<uint8_t>&),
+                 BvhBuild method = BvhBuild::median) {
+    const std::shared_ptr<Loaded> l = load(name, method);
     if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
-    const RaySets& s = ray_sets(name);
+    const RaySets& s = ray_sets(name, method);
     size_t hits = 0;
     for (const Hit& h : s.camera_hits) hits += h.hit();
     EXPECT_GT(hits, s.camera.size() / 10) << "the camera rays must hit something";
@@ -251,6 +255,26 @@ TYPED_TEST(IntersectPacket, BlocksMatchScalarOnTheBunny) {
 TYPED_TEST(IntersectPacket, BlocksMatchScalarOnEveryAnalyticShape) {
     constexpr int W = TypeParam::value;
     check_scene("builtin", closest_block_mismatches<W>, any_block_mismatches<W>);
+}
+
+/// The traversals make no assumption about the tree beyond its layout: through the SAH build
+/// (a comparison option) packets and blocks still give the scalar answers, and the scalar
+/// answers are the median tree's (the closest hit does not depend on the tree).
+TYPED_TEST(IntersectPacket, PacketsAndBlocksMatchScalarThroughTheSahBuild) {
+    constexpr int W = TypeParam::value;
+    check_scene("dragon", closest_mismatches<W>, any_mismatches<W>, BvhBuild::sah);
+    check_scene("dragon", closest_block_mismatches<W>, any_block_mismatches<W>, BvhBuild::sah);
+    check_scene("builtin", closest_block_mismatches<W>, any_block_mismatches<W>, BvhBuild::sah);
+    const std::shared_ptr<Loaded> median = load("dragon");
+    if (!median) return;
+    const RaySets &a = ray_sets("dragon", BvhBuild::median), &b = ray_sets("dragon", BvhBuild::sah);
+    ASSERT_EQ(a.camera.size(), b.camera.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < a.camera_hits.size(); ++i)
+        differ += a.camera_hits[i].prim != b.camera_hits[i].prim ||
+                  a.camera_hits[i].t != b.camera_hits[i].t;
+    EXPECT_EQ(differ, 0u);
+    EXPECT_EQ(a.shadow_blocked, b.shadow_blocked);
 }
 
 TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
