@@ -1,5 +1,6 @@
 // Benchmarks of render/: full frames of scenes/dragon.json (1920x1080, 1 sample, two point
-// lights with shadows), scalar and packet path, on 1 and 2 threads.
+// lights with shadows), scalar and packet path, on 1 and 2 threads; the packet path also through
+// the binned SAH build (a comparison option, `--bvh sah`).
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -13,15 +14,17 @@ namespace {
 
 struct Loaded {
     Scene scene;
-    Accel accel;
+    Accel accel;      ///< the median split (the report's build, the default)
+    Accel accel_sah;  ///< binned SAH
 };
 
 const Loaded* dragon_scene() {
     static Loaded* loaded = []() -> Loaded* {
         const std::string path = std::string(RAYLANE_SOURCE_DIR) + "/scenes/dragon.json";
         try {
-            auto* l = new Loaded{load_scene(path), {}};
+            auto* l = new Loaded{load_scene(path), {}, {}};
             l->accel = build_accel(l->scene, BuildParams{});
+            l->accel_sah = build_accel(l->scene, BuildParams{.method = BvhBuild::sah});
             return l;
         } catch (const std::exception&) {
             return nullptr;
@@ -30,18 +33,19 @@ const Loaded* dragon_scene() {
     return loaded;
 }
 
-void frame(benchmark::State& state, bool packet) {
+void frame(benchmark::State& state, bool packet, BvhBuild build = BvhBuild::median) {
     const Loaded* l = dragon_scene();
     if (!l) {
         state.SkipWithError("scenes/dragon.json or its model not found");
         return;
     }
+    const Accel& accel = build == BvhBuild::sah ? l->accel_sah : l->accel;
     RenderParams params;
     params.threads = static_cast<int>(state.range(0));
     uint64_t rays = 0;
     for (auto _ : state) {
-        RenderResult r = packet ? render_packet(l->scene, l->accel, params)
-                                : render_scalar(l->scene, l->accel, params);
+        RenderResult r = packet ? render_packet(l->scene, accel, params)
+                                : render_scalar(l->scene, accel, params);
         rays += r.stats.total_rays();
         benchmark::DoNotOptimize(r.film.pixels.data());
     }
@@ -51,6 +55,7 @@ void frame(benchmark::State& state, bool packet) {
 
 void BM_Frame_Scalar(benchmark::State& state) { frame(state, false); }
 void BM_Frame_Packet(benchmark::State& state) { frame(state, true); }
+void BM_Frame_PacketSah(benchmark::State& state) { frame(state, true, BvhBuild::sah); }
 
 BENCHMARK(BM_Frame_Scalar)
     ->ArgName("threads")
@@ -59,6 +64,12 @@ BENCHMARK(BM_Frame_Scalar)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_Frame_Packet)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_Frame_PacketSah)
     ->ArgName("threads")
     ->Arg(1)
     ->Arg(2)
