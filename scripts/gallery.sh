@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Gallery: renders every report figure (scenes/fig*.json) into docs/gallery/*.png, as listed in
-# docs/gallery.md. Usage: scripts/gallery.sh [path/to/raylane]   (default build/release/raylane)
+# docs/gallery.md, and times each in both paths (the table under "Render times" there).
+# Usage: scripts/gallery.sh [path/to/raylane]   (default build/release/raylane)
 # Images are 400 pixels wide (aspect kept) at the scene's spp, except where `options` below says
-# otherwise; renders are deterministic (fixed sample hash seed), so a rerun gives the same files.
+# otherwise (every PNG under 200 KB); renders are deterministic (fixed sample hash seed), so a rerun gives the same files.
 set -euo pipefail
 
 raylane="${1:-build/release/raylane}"
@@ -20,8 +21,16 @@ mkdir -p "$out"
 # Per-figure options (default --width 400); keep in step with the commands in docs/gallery.md.
 declare -A options=(
     [fig01b_glossy_sphere]="--width 400 --spp 20"  # 50 spp would take ~100 s on 2 shared cores
-    [fig11_fractal]="--width 640"                  # the fractal's detail is lost at 400 pixels
+    [fig11_fractal]="--width 440"                  # more detail than 400; 640 takes 366 KB
+    # the PNGs stay under 200 KB (blur and noise compress poorly)
+    [fig06c_reflection_magenta]="--width 390"
+    [fig08a_dof_close]="--width 340"
+    [fig08b_dof_middle]="--width 340"
+    [fig08c_dof_far]="--width 340"
 )
+
+# The render time a `raylane render` printed ("time ... render X ms"), in milliseconds.
+render_ms() { sed -n 's/^time .*render \([0-9.]*\) ms$/\1/p'; }
 
 render() {
     local name="$1"
@@ -31,11 +40,34 @@ render() {
     printf '%-40s %4d s\n' "${OUT_NAME:-$name}.png" $((SECONDS - start))
 }
 
+# Each figure rendered by the packet path into docs/gallery, then by the scalar path (same
+# options and samples) into a scratch file, for the table of render times in docs/gallery.md.
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+times="$scratch/times.md"
 for scene in scenes/fig*.json; do
     name="$(basename "$scene" .json)"
+    opts="${options[$name]:---width 400}"
     # shellcheck disable=SC2086  # the extra options are meant to split into words
-    render "$name" ${options[$name]:---width 400}
+    packet=$("$raylane" render "$scene" -q $opts -o "$out/$name.png" | render_ms)
+    # shellcheck disable=SC2086
+    scalar=$("$raylane" render "$scene" -q $opts --path scalar -o "$scratch/$name.png" | render_ms)
+    printf '%-40s packet %8.1f ms, scalar %8.1f ms\n' "$name.png" "$packet" "$scalar"
+    awk -v n="$name" -v o="$opts" -v p="$packet" -v s="$scalar" 'BEGIN {
+        printf "| %s | <img src=\"gallery/%s.png\" width=\"96\"> | `%s` | %.0f ms | %.0f ms | %.1fx |\n",
+            n, n, o, p, s, s / p }' >>"$times"
 done
+
+# the table between the markers of docs/gallery.md
+awk -v times="$times" '
+    /<!-- render-times begin/ { print; skip = 1
+        print "| figure | image | options | packet | scalar | packet / scalar |"
+        print "|---|---|---|---:|---:|---:|"
+        while ((getline line < times) > 0) print line
+        next }
+    /<!-- render-times end/ { skip = 0 }
+    !skip { print }' docs/gallery.md >"$scratch/gallery.md"
+cp "$scratch/gallery.md" docs/gallery.md
 
 # Figure 9's false colour: nodes tested per ray. The packet path (default) counts per packet of
 # 16 rays; the scalar path counts per ray, as the report did.

@@ -82,9 +82,10 @@ inline float intersect_cylinder(const Cylinder& cyl, const Ray& ray) {
 /// Normal and uv at an object-space point p on the cylinder. The part is the one nearest to p
 /// (side, bottom cap, top cap; ties go in that order). Side: normal (x, 0, z) / |(x, z)|,
 /// uv = (phi / 2 pi, y / h). Caps: normal -y or +y, uv = (phi / 2 pi, |(x, z)| / r). phi is the
-/// azimuth around +y from +x towards +z.
+/// azimuth around +y from +x towards +z. With with_uv false, uv stays 0 (no atan2; see
+/// geometry_sphere).
 template <typename T>
-inline LocalGeometryOf<T> geometry_cylinder(const Cylinder& cyl, Vec3Of<T> p) {
+inline LocalGeometryOf<T> geometry_cylinder(const Cylinder& cyl, Vec3Of<T> p, bool with_uv = true) {
     const T radius = static_cast<T>(cyl.radius);
     const T height = static_cast<T>(cyl.height);
     const T rho = std::sqrt(p.x * p.x + p.z * p.z);
@@ -92,17 +93,17 @@ inline LocalGeometryOf<T> geometry_cylinder(const Cylinder& cyl, Vec3Of<T> p) {
     const T d_bottom = std::abs(p.y);
     const T d_top = std::abs(p.y - height);
     LocalGeometryOf<T> g;
-    const T u = azimuth_fraction(p.x, p.z);
+    const T u = with_uv ? azimuth_fraction(p.x, p.z) : T(0);
     if (d_side <= d_bottom && d_side <= d_top) {
         // side (on the axis only for a zero radius: any horizontal normal will do)
         g.normal = rho > T(0) ? Vec3Of<T>(p.x / rho, T(0), p.z / rho) : Vec3Of<T>(T(1), T(0), T(0));
         const T v = height > T(0) ? p.y / height : T(0);
-        g.uv = glm::vec<2, T>(u, std::clamp(v, T(0), T(1)));
+        if (with_uv) g.uv = glm::vec<2, T>(u, std::clamp(v, T(0), T(1)));
     } else {
         // caps
         g.normal = d_bottom <= d_top ? Vec3Of<T>(T(0), T(-1), T(0)) : Vec3Of<T>(T(0), T(1), T(0));
         const T v = radius > T(0) ? rho / radius : T(0);
-        g.uv = glm::vec<2, T>(u, std::clamp(v, T(0), T(1)));
+        if (with_uv) g.uv = glm::vec<2, T>(u, std::clamp(v, T(0), T(1)));
     }
     return g;
 }

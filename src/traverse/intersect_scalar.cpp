@@ -281,11 +281,14 @@ SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
     }
     const Ray r = to_object_space(object, ray);
     vec3 p = r.org + hit.t * r.dir;
+    // uv only for a material that reads it (spheres and cylinders skip acos and atan2 otherwise)
+    const Material& m = scene.materials[object.material];
+    const bool with_uv = m.texture >= 0 || m.normal_map >= 0;
     LocalGeometry g;
     switch (object.kind) {
         case ShapeKind::sphere: {
             const Sphere& s = scene.spheres[object.shape];
-            g = geometry_sphere(s, p);
+            g = geometry_sphere(s, p, with_uv);
             // back onto the surface: o + t d is off it by the error of t times |d|, which grows
             // with the distance of the origin (numerics.md section 4)
             p = s.center + s.radius * g.normal;
@@ -301,7 +304,7 @@ SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
         }
         case ShapeKind::cylinder: {
             const Cylinder& c = scene.cylinders[object.shape];
-            g = geometry_cylinder(c, p);
+            g = geometry_cylinder(c, p, with_uv);
             // onto the cap plane, or back onto the side at the same height
             if (g.normal.y != 0.0f) {
                 p.y = g.normal.y < 0.0f ? 0.0f : c.height;

@@ -54,11 +54,14 @@ inline float intersect_sphere(const Sphere& s, const Ray& ray) {
 
 /// Normal and uv at an object-space point p on the sphere. The normal is normalize(p - center)
 /// (p need not lie exactly on the surface); uv = (phi / 2 pi, theta / pi) with phi the azimuth
-/// around +y from +x towards +z and theta the angle from +y (v = 0 at the +y pole).
+/// around +y from +x towards +z and theta the angle from +y (v = 0 at the +y pole). With
+/// with_uv false, uv stays 0 (no acos and atan2: surface_at asks for uv only when the material
+/// reads a texture or a normal map).
 template <typename T>
-inline LocalGeometryOf<T> geometry_sphere(const Sphere& s, Vec3Of<T> p) {
+inline LocalGeometryOf<T> geometry_sphere(const Sphere& s, Vec3Of<T> p, bool with_uv = true) {
     LocalGeometryOf<T> g;
     g.normal = glm::normalize(p - Vec3Of<T>(s.center));
+    if (!with_uv) return g;
     const T theta = std::acos(std::clamp(g.normal.y, T(-1), T(1)));
     g.uv =
         glm::vec<2, T>(azimuth_fraction(g.normal.x, g.normal.z), theta * std::numbers::inv_pi_v<T>);

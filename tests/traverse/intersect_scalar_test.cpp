@@ -221,5 +221,35 @@ TEST(IntersectScalar, TransformedSphereMovesWithItsTransform) {
     EXPECT_NEAR(sp.position.z, 8.0f, 1e-5f);
 }
 
+/// surface_at gives uv on spheres and cylinders only to a material that reads it (a texture or
+/// a normal map): the same normal and position either way, uv 0 otherwise (no acos / atan2).
+TEST(IntersectScalar, SurfaceUvOnlyForMaterialsThatReadIt) {
+    for (ShapeKind kind : {ShapeKind::sphere, ShapeKind::cylinder}) {
+        Scene scene;
+        scene.materials.resize(3);
+        scene.materials[1].texture = 0;
+        scene.materials[2].normal_map = 0;
+        scene.spheres.push_back({vec3(0.0f), 1.0f});
+        scene.cylinders.push_back({1.0f, 2.0f});
+        scene.objects.push_back(Object{kind, 0, 0});
+        const Accel accel = build_accel(scene, BuildParams{});
+        Ray ray;
+        ray.org = vec3(0.3f, 0.5f, -5.0f);
+        ray.dir = vec3(0.0f, 0.0f, 1.0f);
+        const Hit hit = intersect_closest(scene, accel, ray);
+        ASSERT_TRUE(hit.hit());
+        const SurfacePoint plain = surface_at(scene, ray, hit);
+        EXPECT_EQ(plain.uv, vec2(0.0f));
+        for (uint32_t material : {1u, 2u}) {
+            scene.objects[0].material = material;
+            const SurfacePoint sp = surface_at(scene, ray, hit);
+            EXPECT_GT(sp.uv.x, 0.5f) << int(kind);  // the -z side: azimuth past a half turn
+            EXPECT_GT(sp.uv.y, 0.0f) << int(kind);
+            EXPECT_EQ(sp.position, plain.position);
+            EXPECT_EQ(sp.geometric_normal, plain.geometric_normal);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace raylane
