@@ -5,6 +5,7 @@
 # Images are 400 pixels wide (aspect kept) at the scene's spp, except where `options` below says
 # otherwise (every PNG under 200 KB); renders are deterministic (fixed sample hash seed), so a rerun gives the same files.
 set -euo pipefail
+export LC_ALL=C  # printf and awk read "1817.3" with a decimal point
 
 raylane="${1:-build/release/raylane}"
 # A relative path given by the caller is relative to the caller's directory.
@@ -29,8 +30,19 @@ declare -A options=(
     [fig08c_dof_far]="--width 340"
 )
 
-# The render time a `raylane render` printed ("time ... render X ms"), in milliseconds.
-render_ms() { sed -n 's/^time .*render \([0-9.]*\) ms$/\1/p'; }
+# The render time a `raylane render` printed ("time ... render X ms"), in milliseconds; fails
+# when there is none.
+render_ms() {
+    local ms
+    ms=$(sed -n 's/^time .*render \([0-9.]*\) ms$/\1/p')
+    [[ "$ms" =~ ^[0-9]+(\.[0-9]+)?$ ]] || { echo "gallery: no render time in the output" >&2; return 1; }
+    echo "$ms"
+}
+
+grep -q '<!-- render-times begin' docs/gallery.md && grep -q '<!-- render-times end' docs/gallery.md || {
+    echo "gallery: docs/gallery.md lacks the render-times markers" >&2
+    exit 1
+}
 
 render() {
     local name="$1"
@@ -55,13 +67,13 @@ for scene in scenes/fig*.json; do
     printf '%-40s packet %8.1f ms, scalar %8.1f ms\n' "$name.png" "$packet" "$scalar"
     awk -v n="$name" -v o="$opts" -v p="$packet" -v s="$scalar" 'BEGIN {
         printf "| %s | <img src=\"gallery/%s.png\" width=\"96\"> | `%s` | %.0f ms | %.0f ms | %.1fx |\n",
-            n, n, o, p, s, s / p }' >>"$times"
+            n, n, o, p, s, p > 0 ? s / p : 0 }' >>"$times"
 done
 
 # the table between the markers of docs/gallery.md
 awk -v times="$times" '
     /<!-- render-times begin/ { print; skip = 1
-        print "| figure | image | options | packet | scalar | packet / scalar |"
+        print "| figure | image | options | packet | scalar | speed-up (scalar / packet time) |"
         print "|---|---|---|---:|---:|---:|"
         while ((getline line < times) > 0) print line
         next }
@@ -69,8 +81,9 @@ awk -v times="$times" '
     !skip { print }' docs/gallery.md >"$scratch/gallery.md"
 cp "$scratch/gallery.md" docs/gallery.md
 
-# Figure 9's false colour: nodes tested per ray. The packet path (default) counts per packet of
-# 16 rays; the scalar path counts per ray, as the report did.
+# Figure 9's false colour: nodes tested per ray, as the report counted them. Both paths count
+# per ray (for this AOV the packet path traverses each ray of its packets on its own), so the
+# two images are the same.
 OUT_NAME=fig09_bunny_bvh_cost render fig09_bunny_bvh --width 400 --aov bvh-cost
 OUT_NAME=fig09_bunny_bvh_cost_scalar render fig09_bunny_bvh --width 400 --aov bvh-cost --path scalar
 

@@ -74,9 +74,14 @@ struct SahBuilder {
             axis =
                 extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
             mid = first + n / 2;
+            // a strict weak order even for NaN centroids (overflowed bounds): NaN sorts last
+            auto key = [&](uint32_t id) {
+                const float c = centroids[id][axis];
+                return std::isnan(c) ? std::numeric_limits<float>::infinity() : c;
+            };
             std::nth_element(ids.begin() + first, ids.begin() + mid, ids.begin() + last,
                              [&](uint32_t a, uint32_t b) {
-                                 const float ca = centroids[a][axis], cb = centroids[b][axis];
+                                 const float ca = key(a), cb = key(b);
                                  return ca < cb || (ca == cb && a < b);
                              });
         }

@@ -47,7 +47,7 @@ Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& param
 
 /// Binned SAH (16 bins per axis, the cheapest split of the three axes; a node visit costs three
 /// primitive tests), a leaf when that is cheaper and the node holds at most max_leaf_size
-/// primitives. Below depth 31 it halves at the median, so the tree stays within
+/// primitives. From depth 31 on it halves at the median, so the tree stays within
 /// the traversal stack. Same node layout and order rules as build_bvh_median.
 Bvh build_bvh_sah(std::span<const Aabb> prim_bounds, const BuildParams& params);
 

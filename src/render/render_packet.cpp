@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <chrono>
 #include <vector>
 
@@ -391,6 +392,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 }
             }
         }
+        assert(count <= max_packets);  // tiles are at most 16x16 pixels (tile_size above)
         ShadeCounts counts;
         uint64_t nans = 0, infs = 0;
         for (int s = 0; s < spp; ++s) {

@@ -598,7 +598,8 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
     // Lane-wise minima and maxima over the packets first, one horizontal reduction per bound at
     // the end: the same set of active, non-NaN lanes as hmin/hmax per packet, 13 reductions per
     // block instead of 13 per packet. The reciprocals' bounds come from the directions' (below),
-    // so a block culled at the root never divides.
+    // three divisions per block: a block culled at the root never computes its packets'
+    // reciprocals.
     const vfloat<W> inf(infinity), neg_inf(-infinity);
     vfloat<W> t_min = inf, org_lo[3] = {inf, inf, inf}, org_hi[3] = {neg_inf, neg_inf, neg_inf};
     vfloat<W> dir_lo[3] = {inf, inf, inf}, dir_hi[3] = {neg_inf, neg_inf, neg_inf};
@@ -629,15 +630,20 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
     for (int k = 0; k < 3; ++k) {
         b.org_lo[k] = hmin(org_lo[k]);
         b.org_hi[k] = hmax(org_hi[k]);
-        // Directions of one sign, strictly (no zero): 1/x is correctly rounded and decreasing,
-        // so these are exactly the bounds of the lanes' reciprocals. A zero, mixed signs or a
-        // reciprocal that overflows (as a lane's infinite one did) make the axis unusable.
+        // 1/x is correctly rounded and decreasing on each sign, so over directions of one sign
+        // these are exactly the bounds of the lanes' reciprocals. The axis is usable when they
+        // are, as the lanes' own were before this shortcut: finite and strictly of one sign.
+        // That leaves out a zero or mixed signs (d_lo <= 0 <= d_hi), an infinite or, under
+        // flush-to-zero, a huge direction (a reciprocal of +-0; block_may_hit takes the sign
+        // from inv_hi) and an axis whose active lanes are all NaN (d_lo = +inf, d_hi = -inf).
         const float d_lo = hmin(dir_lo[k]), d_hi = hmax(dir_hi[k]);
         b.inv_lo[k] = 1.0f / d_hi;
         b.inv_hi[k] = 1.0f / d_lo;
         const bool finite = std::isfinite(b.inv_lo[k]) && std::isfinite(b.inv_hi[k]) &&
                             std::isfinite(b.org_lo[k]) && std::isfinite(b.org_hi[k]);
-        b.usable[k] = finite && (d_lo > 0.0f || d_hi < 0.0f);
+        const bool positive = d_lo > 0.0f && b.inv_lo[k] > 0.0f;
+        const bool negative = d_hi < 0.0f && b.inv_hi[k] < 0.0f;
+        b.usable[k] = finite && (positive || negative);
     }
     return b;
 }

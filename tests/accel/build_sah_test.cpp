@@ -80,8 +80,9 @@ TEST(BuildSah, AllCentroidsEqualFallBackToHalves) {
     EXPECT_LE(compute_stats(bvh).max_leaf_depth, 7);  // ceil(log2(300 / 4)) halvings
 }
 
-/// Magnitudes near float's limits: centroid extents that overflow to infinity, and denormal
-/// ones whose bin scale overflows, fall back to halving (UBSan checks the bin conversions).
+/// Magnitudes near float's limits: centroid extents that overflow to infinity, denormal ones
+/// whose bin scale overflows, and NaN centroids fall back to halving (UBSan checks the bin
+/// conversions).
 TEST(BuildSah, ExtremeMagnitudesKeepTheInvariants) {
     std::vector<Aabb> boxes;
     for (int i = 0; i < 200; ++i) {
@@ -90,13 +91,18 @@ TEST(BuildSah, ExtremeMagnitudesKeepTheInvariants) {
         const float tiny = 1e-42f * float(i);
         boxes.push_back(Aabb{vec3(tiny, tiny, 0.0f), vec3(tiny, tiny, 0.0f)});
     }
+    // unbounded along x: the centroid's x is NaN (-inf + inf), which the fallback's median
+    // order must still place
+    for (int i = 0; i < 9; ++i)
+        boxes.push_back(
+            Aabb{vec3(-infinity, float(i), 0.0f), vec3(infinity, float(i) + 1.0f, 1.0f)});
     const Bvh bvh = build_bvh_sah(boxes, sah());
     EXPECT_EQ(check_bvh(bvh, boxes, 4), "");
     EXPECT_LT(compute_stats(bvh).max_leaf_depth, traversal_stack_entries);
 }
 
 /// Centroids spaced exponentially (numerics.md §20): every binned split puts almost all of them
-/// in the lowest bin, so the SAH tree degenerates; below depth 31 the build halves instead and
+/// in the lowest bin, so the SAH tree degenerates; from depth 31 on the build halves instead and
 /// the tree still fits the traversal stack.
 TEST(BuildSah, ExponentialCentroidsStayWithinTheTraversalStack) {
     const size_t n = 200000;

@@ -4,6 +4,7 @@
 #include "traverse/intersect_packet.h"
 
 #include <gtest/gtest.h>
+#include <immintrin.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -34,8 +35,8 @@ struct Loaded {
     Accel accel;
 };
 
-/// A scene from scenes/ (nullptr when its model is absent).
-/// A scene of scenes/ (or the built-in one) with its BVHs built by `method`.
+/// A scene of scenes/ (or the built-in one) with its BVHs built by `method`; nullptr when its
+/// model is absent.
 std::shared_ptr<Loaded> load(const std::string& name, BvhBuild method = BvhBuild::median) {
     static std::map<std::pair<std::string, BvhBuild>, std::shared_ptr<Loaded>> cache;
     const auto key = std::make_pair(name, method);
@@ -342,6 +343,65 @@ TYPED_TEST(IntersectPacket, BlocksHandleNegativeIntervals) {
         EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want), 0u) << name;
         EXPECT_EQ(any_block_mismatches<W>(*l, rays, blocked), 0u) << name;
     }
+}
+
+/// Blocks whose rays include infinite or huge direction components beside finite ones: the
+/// reciprocal of -inf is -0, and of -1e38 a denormal that flush-to-zero (the render threads' mode)
+/// makes -0, so the block's reciprocal bounds on that axis touch zero and the axis must not cull
+/// (block_may_hit takes the axis's sign from them). A box at x in [-10, -5], y in [12, 100]: the
+/// rays (-0.5, 1, 0) from the origin cross it for t in [12, 20]; each block mixes them with rays
+/// of one other direction, with and without flush-to-zero, t_min 0 and 1.
+TYPED_TEST(IntersectPacket, BlocksWithInfiniteOrHugeDirectionsMatchScalar) {
+    constexpr int W = TypeParam::value;
+    Loaded l;
+    l.scene.materials.resize(1);
+    l.scene.boxes = {Box{vec3(-10.0f, 12.0f, -1.0f), vec3(-5.0f, 100.0f, 1.0f)}};
+    l.scene.objects.resize(1);
+    l.scene.objects[0].kind = ShapeKind::box;
+    l.accel = build_accel(l.scene, BuildParams{});
+    const float inf = std::numeric_limits<float>::infinity();
+    const vec3 dirs[] = {{-0.5f, 1.0f, 0.0f}, {-inf, 1.0f, 0.0f},  {-1e38f, 1.0f, 0.0f},
+                         {-0.5f, inf, 0.0f},  {-0.5f, 1.0f, -inf}, {-0.5f, 1e38f, 0.0f}};
+    // block j (of 10) alternates dirs[0] with dirs[1 + j / 2], at t_min 0 or 1
+    std::vector<Ray> rays;
+    for (int j = 0; j < 10; ++j)
+        for (int i = 0; i < max_block_rays; ++i)
+            rays.push_back({vec3(0.0f), dirs[i % 2 == 0 ? 0 : 1 + j / 2], float(j % 2), infinity});
+    const unsigned saved = _mm_getcsr();
+    for (bool ftz : {false, true}) {
+        if (ftz) _mm_setcsr(saved | 0x8040u);  // FTZ | DAZ, as the render threads run
+        std::vector<Hit> want(rays.size());
+        std::vector<uint8_t> blocked(rays.size());
+        size_t hits = 0;
+        for (size_t i = 0; i < rays.size(); ++i) {
+            want[i] = intersect_closest(l.scene, l.accel, rays[i]);
+            blocked[i] = intersect_any(l.scene, l.accel, rays[i]);
+            hits += want[i].hit();
+        }
+        EXPECT_GE(hits, rays.size() / 2) << "ftz " << ftz;
+        // the blocks on this thread, so that they run in the same floating-point mode
+        constexpr int per_block = max_block_rays / W;
+        size_t bad = 0;
+        for (size_t b = 0; b < rays.size(); b += max_block_rays) {
+            RayPacket<W> p[per_block];
+            vmask<W> active[per_block] = {}, occluded[per_block] = {};
+            HitPacket<W> got[per_block];
+            for (int c = 0; c < per_block; ++c)
+                p[c] = make_packet<W>(rays, b + size_t(c) * W, active[c]);
+            intersect_closest_block(l.scene, l.accel, p, active, got, per_block);
+            intersect_any_block(l.scene, l.accel, p, active, occluded, per_block);
+            for (int c = 0; c < per_block; ++c) {
+                for (int i = 0; i < W; ++i) {
+                    const size_t k = b + size_t(c) * W + size_t(i);
+                    const Hit g = get_hit(got[c], i);
+                    bad += g.prim != want[k].prim || (want[k].hit() && g.t != want[k].t);
+                    bad += ((bits(occluded[c]) >> i) & 1u) != blocked[k];
+                }
+            }
+        }
+        EXPECT_EQ(bad, 0u) << "ftz " << ftz;
+    }
+    _mm_setcsr(saved);
 }
 
 /// Blocks of rays leaving a plane from points on it (offset as the renderer offsets them): a
