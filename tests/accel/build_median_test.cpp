@@ -1,23 +1,11 @@
 // Tests of accel/build_median.cpp and accel/check_bvh.cpp: invariants of the median-split BVH.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include "accel/bvh.h"
+#include "accel/random_boxes.h"
 
 namespace raylane {
 namespace {
-
-std::vector<Aabb> random_boxes(size_t n, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(-10.0f, 10.0f), size(0.0f, 0.5f);
-    std::vector<Aabb> boxes(n);
-    for (Aabb& b : boxes) {
-        b.lo = vec3(pos(rng), pos(rng), pos(rng));
-        b.hi = b.lo + vec3(size(rng), size(rng), size(rng));
-    }
-    return boxes;
-}
 
 TEST(BuildMedian, EmptyInputGivesEmptyBvh) {
     const Bvh bvh = build_bvh_median({}, BuildParams{});

@@ -5,26 +5,15 @@
 
 #include <cmath>
 #include <filesystem>
-#include <random>
 
 #include "accel/bvh.h"
+#include "accel/random_boxes.h"
 #include "io/load_mesh.h"
 
 namespace raylane {
 namespace {
 
 constexpr int traversal_stack_entries = 64;  // src/traverse/intersect_*.cpp
-
-std::vector<Aabb> random_boxes(size_t n, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(-10.0f, 10.0f), size(0.0f, 0.5f);
-    std::vector<Aabb> boxes(n);
-    for (Aabb& b : boxes) {
-        b.lo = vec3(pos(rng), pos(rng), pos(rng));
-        b.hi = b.lo + vec3(size(rng), size(rng), size(rng));
-    }
-    return boxes;
-}
 
 BuildParams sah(int leaf = 4) {
     return BuildParams{.max_leaf_size = leaf, .method = BvhBuild::sah};

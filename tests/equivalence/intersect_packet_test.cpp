@@ -198,6 +198,22 @@ size_t any_block_mismatches(const Loaded& l, const std::vector<Ray>& rays,
     return bad;
 }
 
+/// The scalar path's answers for a ray set (the reference every packet form is held to).
+struct ScalarAnswers {
+    std::vector<Hit> closest;
+    std::vector<uint8_t> blocked;
+    size_t hits = 0;
+};
+ScalarAnswers scalar_answers(const Loaded& l, const std::vector<Ray>& rays) {
+    ScalarAnswers a{std::vector<Hit>(rays.size()), std::vector<uint8_t>(rays.size()), 0};
+    for (size_t i = 0; i < rays.size(); ++i) {
+        a.closest[i] = intersect_closest(l.scene, l.accel, rays[i]);
+        a.blocked[i] = intersect_any(l.scene, l.accel, rays[i]);
+        a.hits += a.closest[i].hit();
+    }
+    return a;
+}
+
 template <class T>
 class IntersectPacket : public ::testing::Test {};
 TYPED_TEST_SUITE(IntersectPacket, Widths, WidthName);
@@ -301,16 +317,11 @@ TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
         rays.push_back({p, r.dir, 0.0f, infinity});
         rays.push_back({p, -r.dir, 0.0f, infinity});
     }
-    std::vector<Hit> want(rays.size());
-    std::vector<uint8_t> blocked(rays.size());
-    for (size_t i = 0; i < rays.size(); ++i) {
-        want[i] = intersect_closest(l->scene, l->accel, rays[i]);
-        blocked[i] = intersect_any(l->scene, l->accel, rays[i]);
-    }
-    EXPECT_EQ(closest_mismatches<W>(*l, rays, want), 0u);
-    EXPECT_EQ(any_mismatches<W>(*l, rays, blocked), 0u);
-    EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want), 0u);
-    EXPECT_EQ(any_block_mismatches<W>(*l, rays, blocked), 0u);
+    const ScalarAnswers want = scalar_answers(*l, rays);
+    EXPECT_EQ(closest_mismatches<W>(*l, rays, want.closest), 0u);
+    EXPECT_EQ(any_mismatches<W>(*l, rays, want.blocked), 0u);
+    EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want.closest), 0u);
+    EXPECT_EQ(any_block_mismatches<W>(*l, rays, want.blocked), 0u);
 }
 
 /// The camera's rays reversed, searching behind their origin (t in (-1e4, 0)): block culling
@@ -331,17 +342,10 @@ TYPED_TEST(IntersectPacket, BlocksHandleNegativeIntervals) {
                 rays.push_back({r.org, -r.dir, -1e4f, 0.0f});
             }
         }
-        std::vector<Hit> want(rays.size());
-        std::vector<uint8_t> blocked(rays.size());
-        size_t hits = 0;
-        for (size_t i = 0; i < rays.size(); ++i) {
-            want[i] = intersect_closest(l->scene, l->accel, rays[i]);
-            blocked[i] = intersect_any(l->scene, l->accel, rays[i]);
-            hits += want[i].hit();
-        }
-        EXPECT_GT(hits, rays.size() / 4) << name;
-        EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want), 0u) << name;
-        EXPECT_EQ(any_block_mismatches<W>(*l, rays, blocked), 0u) << name;
+        const ScalarAnswers want = scalar_answers(*l, rays);
+        EXPECT_GT(want.hits, rays.size() / 4) << name;
+        EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want.closest), 0u) << name;
+        EXPECT_EQ(any_block_mismatches<W>(*l, rays, want.blocked), 0u) << name;
     }
 }
 
@@ -370,15 +374,8 @@ TYPED_TEST(IntersectPacket, BlocksWithInfiniteOrHugeDirectionsMatchScalar) {
     const unsigned saved = _mm_getcsr();
     for (bool ftz : {false, true}) {
         if (ftz) _mm_setcsr(saved | 0x8040u);  // FTZ | DAZ, as the render threads run
-        std::vector<Hit> want(rays.size());
-        std::vector<uint8_t> blocked(rays.size());
-        size_t hits = 0;
-        for (size_t i = 0; i < rays.size(); ++i) {
-            want[i] = intersect_closest(l.scene, l.accel, rays[i]);
-            blocked[i] = intersect_any(l.scene, l.accel, rays[i]);
-            hits += want[i].hit();
-        }
-        EXPECT_GE(hits, rays.size() / 2) << "ftz " << ftz;
+        const ScalarAnswers want = scalar_answers(l, rays);
+        EXPECT_GE(want.hits, rays.size() / 2) << "ftz " << ftz;
         // the blocks on this thread, so that they run in the same floating-point mode
         constexpr int per_block = max_block_rays / W;
         size_t bad = 0;
@@ -393,9 +390,9 @@ TYPED_TEST(IntersectPacket, BlocksWithInfiniteOrHugeDirectionsMatchScalar) {
             for (int c = 0; c < per_block; ++c) {
                 for (int i = 0; i < W; ++i) {
                     const size_t k = b + size_t(c) * W + size_t(i);
-                    const Hit g = get_hit(got[c], i);
-                    bad += g.prim != want[k].prim || (want[k].hit() && g.t != want[k].t);
-                    bad += ((bits(occluded[c]) >> i) & 1u) != blocked[k];
+                    const Hit g = get_hit(got[c], i), w = want.closest[k];
+                    bad += g.prim != w.prim || (w.hit() && g.t != w.t);
+                    bad += ((bits(occluded[c]) >> i) & 1u) != want.blocked[k];
                 }
             }
         }
@@ -464,18 +461,11 @@ TYPED_TEST(IntersectPacket, BlocksMatchScalarOnRaysLeavingPlanes) {
             }
         }
     }
-    std::vector<Hit> want(rays.size());
-    std::vector<uint8_t> blocked(rays.size());
-    size_t hits = 0;
-    for (size_t i = 0; i < rays.size(); ++i) {
-        want[i] = intersect_closest(l.scene, l.accel, rays[i]);
-        blocked[i] = intersect_any(l.scene, l.accel, rays[i]);
-        hits += want[i].hit();
-    }
-    EXPECT_GT(hits, rays.size() / 20);
-    EXPECT_LT(hits, rays.size() / 2);
-    EXPECT_EQ(closest_block_mismatches<W>(l, rays, want), 0u);
-    EXPECT_EQ(any_block_mismatches<W>(l, rays, blocked), 0u);
+    const ScalarAnswers want = scalar_answers(l, rays);
+    EXPECT_GT(want.hits, rays.size() / 20);
+    EXPECT_LT(want.hits, rays.size() / 2);
+    EXPECT_EQ(closest_block_mismatches<W>(l, rays, want.closest), 0u);
+    EXPECT_EQ(any_block_mismatches<W>(l, rays, want.blocked), 0u);
 }
 
 TYPED_TEST(IntersectPacket, NoActiveLanesMeansNoHits) {
