@@ -2,13 +2,15 @@
 // Scenes: the meshes of scenes/dragon.json and scenes/bunny.json (the mesh alone, so every
 // contender traces the same triangles). Ray sets: primary rays at 1920x1080 (1 sample at pixel
 // centres, in 16x16 tiles of 4x4 blocks), shadow rays from the primary hits to the scene's
-// lights, and one cosine-distributed bounce ray per hit (incoherent). Contenders: Raylane scalar,
-// Raylane packet at every width, and Embree 3 (rtcIntersect1 / 1M / 16, rtcOccluded1 / 16) when
-// it is installed. 1 and 2 threads (oneTBB; chunks of 256 rays).
+// lights in the renderer's order (per tile and light, one packet per 4x4 pixels, inactive slots
+// where the primary ray missed), and one cosine-distributed bounce ray per hit (incoherent).
+// Contenders: Raylane scalar, Raylane packet at every width, and Embree 3 (rtcIntersect1 / 1M / 16,
+// rtcOccluded1 / 16) when it is installed. 1 and 2 threads (oneTBB; chunks of 256 rays).
 #include <benchmark/benchmark.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -29,7 +31,8 @@
 namespace raylane {
 namespace {
 
-constexpr size_t chunk = 256;  // rays per task
+constexpr size_t chunk = 256;      // rays per task
+constexpr size_t tile_rays = 256;  // primary rays per 16x16 tile
 
 /// A ray set in SoA form, padded with inactive rays (t_max = -1) to a multiple of `chunk`, so
 /// every contender reads its rays without repacking (as a renderer generating them would).
@@ -126,27 +129,45 @@ Workload* workload(const std::string& name) {
     w->primary = primary_rays(w->scene.camera);
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-    for (const Ray& r : w->primary) {
-        const Hit h = intersect_closest(w->scene, w->accel, r);
-        if (!h.hit()) continue;
-        const SurfacePoint sp = surface_at(w->scene, r, h);
-        vec3 n = sp.geometric_normal;
-        if (glm::dot(n, r.dir) > 0.0f) n = -n;
-        const vec3 o = offset_ray_origin(sp.position, n, ray_reach(r, h.t));
-        for (const Light& light : w->scene.lights) {
-            if (light.kind == LightKind::point)
-                w->shadow.push_back({o, light.position - o, 0.0f, 1.0f});
-            else
-                w->shadow.push_back({o, light.direction, 0.0f, infinity});
+    // shadow rays as the renderer's camera pass traces them: for each 16x16 tile with a hit and
+    // each light, a block of 16 packets, one per 4x4-pixel packet of primary rays, a ray where
+    // the primary ray hit and an inactive slot (t_max = -1) elsewhere (the bottom row's tiles
+    // are 16x8: two of them make a block)
+    for (size_t tile = 0; tile < w->primary.size(); tile += tile_rays) {
+        const size_t n = std::min(tile_rays, w->primary.size() - tile);
+        std::vector<vec3> from(tile_rays);
+        std::vector<bool> hit(tile_rays, false);
+        for (size_t i = 0; i < n; ++i) {
+            const Ray& r = w->primary[tile + i];
+            const Hit h = intersect_closest(w->scene, w->accel, r);
+            if (!h.hit()) continue;
+            const SurfacePoint sp = surface_at(w->scene, r, h);
+            vec3 n_g = sp.geometric_normal;
+            if (glm::dot(n_g, r.dir) > 0.0f) n_g = -n_g;
+            const vec3 o = offset_ray_origin(sp.position, n_g, ray_reach(r, h.t));
+            hit[i] = true;
+            from[i] = o;
+            const float u1 = uni(rng), u2 = uni(rng), rad = std::sqrt(u1), phi = 6.2831853f * u2;
+            const vec3 t = glm::normalize(std::fabs(n_g.x) > 0.5f ? glm::cross(n_g, vec3(0, 1, 0))
+                                                                  : glm::cross(n_g, vec3(1, 0, 0)));
+            const vec3 b = glm::cross(n_g, t);
+            w->bounce.push_back({o,
+                                 rad * std::cos(phi) * t + rad * std::sin(phi) * b +
+                                     std::sqrt(std::max(0.0f, 1.0f - u1)) * n_g,
+                                 0.0f, infinity});
         }
-        const float u1 = uni(rng), u2 = uni(rng), rad = std::sqrt(u1), phi = 6.2831853f * u2;
-        const vec3 t = glm::normalize(std::fabs(n.x) > 0.5f ? glm::cross(n, vec3(0, 1, 0))
-                                                            : glm::cross(n, vec3(1, 0, 0)));
-        const vec3 b = glm::cross(n, t);
-        w->bounce.push_back({o,
-                             rad * std::cos(phi) * t + rad * std::sin(phi) * b +
-                                 std::sqrt(std::max(0.0f, 1.0f - u1)) * n,
-                             0.0f, infinity});
+        const auto any = std::find(hit.begin(), hit.end(), true);
+        if (any == hit.end()) continue;
+        const vec3 spare = from[size_t(any - hit.begin())];  // finite data for inactive slots
+        for (const Light& light : w->scene.lights) {
+            for (size_t k = 0; k < tile_rays; ++k) {
+                const vec3 o = hit[k] ? from[k] : spare;
+                Ray r = light.kind == LightKind::point ? Ray{o, light.position - o, 0.0f, 1.0f}
+                                                       : Ray{o, light.direction, 0.0f, infinity};
+                if (!hit[k]) r.t_max = -1.0f;
+                w->shadow.push_back(r);
+            }
+        }
     }
     w->primary_soa = make_soa(w->primary);
     w->shadow_soa = make_soa(w->shadow);
@@ -176,10 +197,15 @@ RayPacket<W> load_packet(const RaySoa& s, size_t i, vmask<W>& active) {
     return p;
 }
 
-/// Runs body(first, last) over the rays in chunks on `threads` threads; counts rays per second.
-/// Chunks cover the padded SoA arrays; the scalar and AoS contenders stop at the last real ray.
+/// Whether a ray is a real one (a shadow packet's slots where the primary ray missed are not).
+bool active_ray(const Ray& r) { return r.t_max >= r.t_min; }
+
+/// Runs body(first, last) over the rays in chunks on `threads` threads; counts the real rays per
+/// second. Chunks cover the padded SoA arrays; the scalar and AoS contenders stop at the last ray
+/// and skip inactive slots.
 template <class Body>
 void run(benchmark::State& state, const std::vector<Ray>& rays, int threads, Body&& body) {
+    const size_t real = size_t(std::count_if(rays.begin(), rays.end(), active_ray));
     tbb::task_arena arena(threads);
     for (auto _ : state) {
         arena.execute([&] {
@@ -189,9 +215,9 @@ void run(benchmark::State& state, const std::vector<Ray>& rays, int threads, Bod
             });
         });
     }
-    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(rays.size()));
-    state.counters["rays/s"] = benchmark::Counter(double(rays.size()) * double(state.iterations()),
-                                                  benchmark::Counter::kIsRate);
+    state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(real));
+    state.counters["rays/s"] =
+        benchmark::Counter(double(real) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 void bench_scalar(benchmark::State& state, std::string scene, std::string set, int threads) {
@@ -202,8 +228,9 @@ void bench_scalar(benchmark::State& state, std::string scene, std::string set, i
     run(state, rays, threads, [&](size_t first, size_t last) {
         uint32_t sum = 0;
         for (size_t i = first; i < std::min(last, rays.size()); ++i)
-            sum += any_hit ? intersect_any(w->scene, w->accel, rays[i])
-                           : intersect_closest(w->scene, w->accel, rays[i]).prim;
+            if (active_ray(rays[i]))
+                sum += any_hit ? intersect_any(w->scene, w->accel, rays[i])
+                               : intersect_closest(w->scene, w->accel, rays[i]).prim;
         benchmark::DoNotOptimize(sum);
     });
 }
@@ -221,6 +248,7 @@ void bench_packet(benchmark::State& state, std::string scene, std::string set, i
         for (size_t i = first; i < last; i += W) {
             vmask<W> active;
             const RayPacket<W> p = load_packet<W>(soa, i, active);
+            if (none(active)) continue;  // a shadow packet whose primary rays all missed
             if (any_hit) {
                 benchmark::DoNotOptimize(intersect_any(w->scene, accel, p, active));
             } else {
@@ -274,6 +302,7 @@ void bench_embree1(benchmark::State& state, std::string scene, std::string set, 
         unsigned sum = 0;
         for (size_t i = first; i < std::min(last, rays.size()); ++i) {
             const Ray& r = rays[i];
+            if (!active_ray(r)) continue;
             RTCRayHit rh{};
             rh.ray = {r.org.x, r.org.y, r.org.z, r.t_min, r.dir.x, r.dir.y,
                       r.dir.z, 0.0f,    r.t_max, ~0u,     0u,      0u};
@@ -325,11 +354,14 @@ void bench_embree16(benchmark::State& state, std::string scene, std::string set,
             std::memcpy(rh.ray.dir_z, soa.at(5, i), sizeof rh.ray.dir_z);
             std::memcpy(rh.ray.tnear, soa.at(6, i), sizeof rh.ray.tnear);
             std::memcpy(rh.ray.tfar, soa.at(7, i), sizeof rh.ray.tfar);
+            bool any_valid = false;
             for (int k = 0; k < 16; ++k) {
                 valid[k] = rh.ray.tfar[k] >= rh.ray.tnear[k] ? -1 : 0;
+                any_valid = any_valid || valid[k] != 0;
                 rh.ray.time[k] = 0.0f, rh.ray.mask[k] = ~0u, rh.ray.id[k] = 0, rh.ray.flags[k] = 0;
                 rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
             }
+            if (!any_valid) continue;  // a shadow packet whose primary rays all missed
             if (any_hit)
                 rtcOccluded16(valid, w->rtc_scene, &ctx, &rh.ray);
             else
