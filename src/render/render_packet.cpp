@@ -86,14 +86,42 @@ void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays
     }
 }
 
+/// Samples of a tile's pixels traced together in one wavefront: its camera rays go in pixel by
+/// pixel (a camera packet's samples one after the other), so the secondary rays of a packet come
+/// from a few neighbouring pixels rather than from sixteen, and stay together longer.
+constexpr int max_batch_samples = 16;
+
+/// Rays per camera ray that a wavefront of max_batch_samples samples may spawn before its queues
+/// outgrow the cache (then fewer samples per wavefront, down to one).
+constexpr int wavefront_ray_budget = 96;
+
+/// The samples per wavefront for a scene: up to max_batch_samples, fewer when its hits spawn
+/// many rays (shadow rays to every light sample, times the glossy rays and their own shadow
+/// rays). A property of the scene alone, so the same for any thread count: the summation order
+/// of a pixel's contributions, and so the image, depends on it.
+int samples_per_wavefront(const Scene& scene, const ShadeParams& params) {
+    int shadow = 0, glossy = 0;
+    for (const Light& light : scene.lights)
+        if (light.shadows) shadow += light_sample_count(light, params);
+    for (const Material& m : scene.materials)
+        if (m.model == SpecularModel::glossy_phong)
+            glossy = std::max(glossy, glossy_sample_count(m, params));
+    const int rays = std::max(shadow, 1) * (1 + glossy);
+    return std::clamp(wavefront_ray_budget / rays, 1, max_batch_samples);
+}
+
+/// A wavefront's slots: sample j of the batch, tile slot i (a pixel) is slot
+/// j * max_block_rays + i.
+constexpr int max_slots = max_batch_samples * max_block_rays;
+
 /// A thread's buffers for shading tiles; grown on the first tiles, then reused.
 struct TileBuffers {
     PathQueue paths, next, next_inside;
     HitArrays hits;
     std::vector<ShadowQueue> shadows;  ///< one per light
     std::vector<int32_t> order, material_count;
-    int32_t pixel[max_block_rays];
-    float acc_r[max_block_rays], acc_g[max_block_rays], acc_b[max_block_rays];
+    int32_t pixel[max_slots], sample[max_slots];  ///< each slot's pixel and sample index
+    float acc_r[max_slots], acc_g[max_slots], acc_b[max_slots];
 };
 
 /// Traces every ray of `q` to its closest hit: the first pass (camera rays, coherent) as blocks,
@@ -170,11 +198,11 @@ void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q,
     }
 }
 
-/// One sample of colour for every pixel slot of the tile whose camera rays are in b.paths:
-/// passes of trace, Beer's law, misses, sort by material, shade, shadows - until no rays are left.
+/// The colour of every slot (a sample of a pixel) whose camera ray is in b.paths: passes of
+/// trace, Beer's law, misses, sort by material, shade, shadows - until no rays are left.
 template <int W, uint32_t F>
-void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams& params,
-                       int32_t sample, uint32_t seed, TileBuffers& b, ShadeCounts& counts) {
+void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParams& params,
+                        uint32_t seed, TileBuffers& b, ShadeCounts& counts) {
     const size_t materials = scene.materials.size();
     if (b.shadows.size() < scene.lights.size()) b.shadows.resize(scene.lights.size());
     b.material_count.resize(materials + 1);
@@ -231,12 +259,13 @@ void shade_tile_sample(const Scene& scene, const Accel& accel, const ShadeParams
                                  .next = &b.next,
                                  .next_inside = &b.next_inside,
                                  .counts = &counts};
+        const SlotMap slots{.pixel = b.pixel, .sample = b.sample};
         int begin = 0;
         for (size_t m = 0; m < materials; ++m) {
             const int end = b.material_count[m];
             for (int i = begin; i < end; i += W) {
-                shade_batch<W, F>(scene, scene.materials[m], params, sample, seed, b.pixel, q,
-                                  b.hits, &b.order[size_t(i)], std::min(W, end - i), target);
+                shade_batch<W, F>(scene, scene.materials[m], params, seed, slots, q, b.hits,
+                                  &b.order[size_t(i)], std::min(W, end - i), target);
             }
             begin = end;
         }
@@ -307,12 +336,13 @@ void shade_camera_block(const Scene& scene, const Accel& accel, const ShadeParam
                                .refr_depth = vint<W>(0),
                                .env = vint<W>(-1),
                                .pixel = pixel[p],
+                               .sample = vint<W>(sample),
                                .local_only = mask_andnot(hit, hit)};
         for (vmask<W> todo = hit; any(todo);) {
             const int32_t object = get(hits[p].object, first_active(todo));
             const vmask<W> same = mask_and(todo, eq(hits[p].object, vint<W>(object)));
             const Material& m = scene.materials[scene.objects[size_t(object)].material];
-            shade_hits<W, F>(scene, m, params, sample, seed, in, same, target);
+            shade_hits<W, F>(scene, m, params, seed, in, same, target);
             todo = mask_andnot(todo, same);
         }
     }
@@ -362,6 +392,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     };
     const vint<W> pixel_offset = lane_offset(cam.width);
     const ShadeParams shade{params.light_samples, params.glossy_samples};
+    const int wavefront_samples = samples_per_wavefront(scene, shade);
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
         thread_local TileBuffers b;
@@ -387,7 +418,9 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 sum[count] = PixelSumPacket<W>{};
                 if constexpr (has_secondary_rays<F>) {  // the wavefront's slot -> pixel map
                     for_each_active(active[count], [&](int i) {
-                        b.pixel[get(slot[count], i)] = get(pixel[count], i);
+                        for (int j = 0; j < max_batch_samples; ++j)
+                            b.pixel[j * max_block_rays + get(slot[count], i)] =
+                                get(pixel[count], i);
                     });
                 }
             }
@@ -395,56 +428,82 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
         assert(count <= max_packets);  // tiles are at most 16x16 pixels (tile_size above)
         ShadeCounts counts;
         uint64_t nans = 0, infs = 0;
-        for (int s = 0; s < spp; ++s) {
+        // camera packet p's rays for sample s
+        auto camera_packet = [&](int p, int s) {
             const vint<W> si(s), seed(static_cast<int32_t>(params.seed));
-            for (int p = 0; p < count; ++p) {
-                // sample position: the pixel centre, or stratified in the pixel
-                vfloat<W> jx(0.5f), jy(0.5f);
-                if (spp > 1) {
-                    stratified_square<W>(
-                        s, spp, random_float<W>(pixel[p], si, vint<W>(dim_pixel_x), seed),
-                        random_float<W>(pixel[p], si, vint<W>(dim_pixel_y), seed), jx, jy);
-                }
-                vfloat<W> lu(0.5f), lv(0.5f);
-                if constexpr ((F & feature_lens) != 0) {
-                    if (frame.lens_radius > 0.0f) {
-                        lu = random_float<W>(pixel[p], si, vint<W>(dim_lens_u), seed);
-                        lv = random_float<W>(pixel[p], si, vint<W>(dim_lens_v), seed);
-                    }
-                }
-                rays[p] = camera_ray<W>(frame, to_float(xi[p]) + jx, to_float(yi[p]) + jy, lu, lv);
-                rays[p].t_max = select(active[p], rays[p].t_max, vfloat<W>(-1.0f));
+            // sample position: the pixel centre, or stratified in the pixel
+            vfloat<W> jx(0.5f), jy(0.5f);
+            if (spp > 1) {
+                stratified_square<W>(
+                    s, spp, random_float<W>(pixel[p], si, vint<W>(dim_pixel_x), seed),
+                    random_float<W>(pixel[p], si, vint<W>(dim_pixel_y), seed), jx, jy);
             }
-            if (params.aov != Aov::color) {
-                aov_values<W>(scene, accel, rays, active, count, params.aov, value);
-            } else if constexpr (!has_secondary_rays<F>) {
-                shade_camera_block<W, F>(scene, accel, shade, s, params.seed, rays, active, slot,
-                                         pixel, count, value, counts);
-            } else {
-                // camera rays into the queue, then passes until every path has ended
-                b.paths.clear();
-                std::fill(b.acc_r, b.acc_r + max_block_rays, 0.0f);
-                std::fill(b.acc_g, b.acc_g + max_block_rays, 0.0f);
-                std::fill(b.acc_b, b.acc_b + max_block_rays, 0.0f);
-                const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
-                const vint<W> zero(0), none(-1);
-                for (int p = 0; p < count; ++p) {
-                    push_packet<W>(b.paths, rays[p].org, rays[p].dir, one, one, slot[p], zero, zero,
-                                   zero, none, zero, active[p]);
-                }
-                shade_tile_sample<W, F>(scene, accel, shade, s, params.seed, b, counts);
-                for (int p = 0; p < count; ++p) {
-                    value[p].x = gather(b.acc_r, slot[p], active[p]);
-                    value[p].y = gather(b.acc_g, slot[p], active[p]);
-                    value[p].z = gather(b.acc_b, slot[p], active[p]);
+            vfloat<W> lu(0.5f), lv(0.5f);
+            if constexpr ((F & feature_lens) != 0) {
+                if (frame.lens_radius > 0.0f) {
+                    lu = random_float<W>(pixel[p], si, vint<W>(dim_lens_u), seed);
+                    lv = random_float<W>(pixel[p], si, vint<W>(dim_lens_v), seed);
                 }
             }
+            RayPacket<W> r =
+                camera_ray<W>(frame, to_float(xi[p]) + jx, to_float(yi[p]) + jy, lu, lv);
+            r.t_max = select(active[p], r.t_max, vfloat<W>(-1.0f));
+            return r;
+        };
+        // adds one sample's values to the pixels' sums (samples in order, so the same sums)
+        auto add_values = [&] {
             for (int p = 0; p < count; ++p) {
                 vmask<W> nan, inf;
                 sample_kinds<W>(value[p], nan, inf);
                 add_sample<W>(sum[p], value[p], mask_andnot(active[p], mask_or(nan, inf)));
                 nans += static_cast<uint64_t>(raylane::count(mask_and(active[p], nan)));
                 infs += static_cast<uint64_t>(raylane::count(mask_and(active[p], inf)));
+            }
+        };
+        // colour with secondary rays: batches of samples, one wavefront each; else one sample at
+        // a time
+        const bool batched = has_secondary_rays<F> && params.aov == Aov::color;
+        const int batch = batched ? wavefront_samples : 1;
+        for (int s0 = 0; s0 < spp; s0 += batch) {
+            const int n = std::min(batch, spp - s0);
+            if (!batched) {
+                for (int p = 0; p < count; ++p) rays[p] = camera_packet(p, s0);
+                if (params.aov != Aov::color) {
+                    aov_values<W>(scene, accel, rays, active, count, params.aov, value);
+                } else if constexpr (!has_secondary_rays<F>) {
+                    shade_camera_block<W, F>(scene, accel, shade, s0, params.seed, rays, active,
+                                             slot, pixel, count, value, counts);
+                }
+                add_values();
+                continue;
+            }
+            // the camera rays into the queue, a packet's n samples one after the other; then
+            // passes until every path has ended
+            b.paths.clear();
+            std::fill(b.acc_r, b.acc_r + n * max_block_rays, 0.0f);
+            std::fill(b.acc_g, b.acc_g + n * max_block_rays, 0.0f);
+            std::fill(b.acc_b, b.acc_b + n * max_block_rays, 0.0f);
+            for (int j = 0; j < n; ++j)
+                std::fill_n(b.sample + j * max_block_rays, max_block_rays, s0 + j);
+            const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
+            const vint<W> zero(0), none(-1);
+            for (int p = 0; p < count; ++p) {
+                for (int j = 0; j < n; ++j) {
+                    const RayPacket<W> r = camera_packet(p, s0 + j);
+                    push_packet<W>(b.paths, r.org, r.dir, one, one,
+                                   slot[p] + vint<W>(j * max_block_rays), zero, zero, zero, none,
+                                   zero, active[p]);
+                }
+            }
+            shade_tile_samples<W, F>(scene, accel, shade, params.seed, b, counts);
+            for (int j = 0; j < n; ++j) {
+                for (int p = 0; p < count; ++p) {
+                    const vint<W> at = slot[p] + vint<W>(j * max_block_rays);
+                    value[p].x = gather(b.acc_r, at, active[p]);
+                    value[p].y = gather(b.acc_g, at, active[p]);
+                    value[p].z = gather(b.acc_b, at, active[p]);
+                }
+                add_values();
             }
         }
         vec3* film = result.film.pixels.data();  // pixel[p] holds each lane's index in it

@@ -38,8 +38,8 @@ struct HitArrays {
     }
 };
 
-/// What a batch writes to: this sample's radiance per tile slot, the shadow queues (one per
-/// light) and the next pass's queue.
+/// What a batch writes to: the radiance per wavefront slot (one sample of one pixel), the shadow
+/// queues (one per light) and the next pass's queue.
 struct ShadeTarget {
     float* acc_r = nullptr;
     float* acc_g = nullptr;
@@ -147,12 +147,12 @@ inline void add_shadow_rays(const PacketTarget<W>& out, size_t j, int i, const V
 }
 
 template <int W>
-inline vfloat<W> random_at(const vint<W>& pixel, int32_t sample, uint32_t seed, const vint<W>& key,
-                           uint32_t purpose, uint32_t index, uint32_t coord) {
+inline vfloat<W> random_at(const vint<W>& pixel, const vint<W>& sample, uint32_t seed,
+                           const vint<W>& key, uint32_t purpose, uint32_t index, uint32_t coord) {
     // path_dim of core/rng.h, lane-wise
     const vint<W> salt = hash_u32<W>(broadcast<W>((purpose << 28) ^ (index << 2) ^ coord));
     const vint<W> dim = hash_u32<W>(key ^ salt) | broadcast<W>(0x80000000u);
-    return random_float<W>(pixel, vint<W>(sample), dim, broadcast<W>(seed));
+    return random_float<W>(pixel, sample, dim, broadcast<W>(seed));
 }
 
 template <int W>
@@ -189,15 +189,22 @@ struct ShadeInput {
     HitPacket<W> hits;
     Vec3<W> weight;
     vint<W> slot, key, refl_depth, refr_depth, env, pixel;
+    vint<W> sample;  ///< the sample index of each lane's path (its random numbers)
     vmask<W> local_only;
 };
 
-/// Queue entries idx[0..k) of `q` with their hits `h` as shading input (gathers); `pixel_of_slot`
-/// maps a tile slot to the image pixel index. Lanes from k on are inactive.
+/// What each slot of a tile's wavefront stands for: the image pixel and the sample index of the
+/// path whose radiance it gathers (a wavefront may hold several samples of the tile's pixels).
+struct SlotMap {
+    const int32_t* pixel = nullptr;
+    const int32_t* sample = nullptr;
+};
+
+/// Queue entries idx[0..k) of `q` with their hits `h` as shading input (gathers); `slots` maps
+/// a slot to its pixel and sample. Lanes from k on are inactive.
 template <int W>
 inline ShadeInput<W> gather_shade_input(const PathQueue& q, const HitArrays& h,
-                                        const int32_t* pixel_of_slot, const int32_t* idx,
-                                        vmask<W> active) {
+                                        const SlotMap& slots, const int32_t* idx, vmask<W> active) {
     using namespace shade_detail;
     vint<W> ids;
     if constexpr (W == 1) {
@@ -226,7 +233,8 @@ inline ShadeInput<W> gather_shade_input(const PathQueue& q, const HitArrays& h,
     in.env = gather_lanes<W>(q.env_map, ids, active, int32_t{-1});
     in.local_only =
         mask_andnot(active, eq(gather_lanes<W>(q.local_only, ids, active, int32_t{0}), vint<W>(0)));
-    in.pixel = float_as_int(gather(reinterpret_cast<const float*>(pixel_of_slot), in.slot, active));
+    in.pixel = float_as_int(gather(reinterpret_cast<const float*>(slots.pixel), in.slot, active));
+    in.sample = float_as_int(gather(reinterpret_cast<const float*>(slots.sample), in.slot, active));
     return in;
 }
 
@@ -234,15 +242,15 @@ inline ShadeInput<W> gather_shade_input(const PathQueue& q, const HitArrays& h,
 /// ambient term to the tile's slots, and queues shadow rays (per light) and secondary rays.
 /// Target: ShadeTarget (queues), or PacketTarget<W> for kernels without secondary rays.
 template <int W, uint32_t F, class Target>
-void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params, int32_t sample,
-                uint32_t seed, const ShadeInput<W>& in, vmask<W> active, const Target& out) {
+void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params, uint32_t seed,
+                const ShadeInput<W>& in, vmask<W> active, const Target& out) {
     using namespace shade_detail;
     const ShadingOptions& o = scene.shading;
     const vfloat<W> zero(0.0f), one(1.0f);
     const RayPacket<W>& rays = in.rays;
     const HitPacket<W>& hits = in.hits;
     const Vec3<W>& weight = in.weight;
-    const vint<W>&slot = in.slot, &key = in.key, &pixel = in.pixel;
+    const vint<W>&slot = in.slot, &key = in.key, &pixel = in.pixel, &sample = in.sample;
     const vint<W>&refl_depth = in.refl_depth, &refr_depth = in.refr_depth, &env = in.env;
     const vmask<W> local_only = mask_and(active, in.local_only);
 
@@ -447,12 +455,12 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
 
 /// Shades k <= W hits of material `m`: queue entries idx[0..k) of `q` with hits `h`.
 template <int W, uint32_t F>
-void shade_batch(const Scene& scene, const Material& m, const ShadeParams& params, int32_t sample,
-                 uint32_t seed, const int32_t* pixel_of_slot, const PathQueue& q,
-                 const HitArrays& h, const int32_t* idx, int k, const ShadeTarget& out) {
+void shade_batch(const Scene& scene, const Material& m, const ShadeParams& params, uint32_t seed,
+                 const SlotMap& slots, const PathQueue& q, const HitArrays& h, const int32_t* idx,
+                 int k, const ShadeTarget& out) {
     const vmask<W> active = mask_from_bits<W>(k >= 32 ? ~0u : (1u << k) - 1u);
-    shade_hits<W, F>(scene, m, params, sample, seed,
-                     gather_shade_input<W>(q, h, pixel_of_slot, idx, active), active, out);
+    shade_hits<W, F>(scene, m, params, seed, gather_shade_input<W>(q, h, slots, idx, active),
+                     active, out);
 }
 
 }  // namespace raylane
