@@ -26,12 +26,18 @@ struct HitPacket {
     vfloat<W> u = vfloat<W>(0.0f), v = vfloat<W>(0.0f);
 };
 
+/// Lane i of W vectors as one vector.
+template <int W>
+vec3 get_vec3(const Vec3<W>& v, int i) {
+    return vec3(get(v.x, i), get(v.y, i), get(v.z, i));
+}
+
 /// Lane i of a packet as a single ray / hit (tests and scalar fallbacks).
 template <int W>
 Ray get_ray(const RayPacket<W>& p, int i) {
     Ray r;
-    r.org = vec3(get(p.org.x, i), get(p.org.y, i), get(p.org.z, i));
-    r.dir = vec3(get(p.dir.x, i), get(p.dir.y, i), get(p.dir.z, i));
+    r.org = get_vec3(p.org, i);
+    r.dir = get_vec3(p.dir, i);
     r.t_min = get(p.t_min, i);
     r.t_max = get(p.t_max, i);
     return r;

@@ -94,11 +94,6 @@ inline Vec3<W> bc(vec3 v) {
     return make_vec3<W>(v.x, v.y, v.z);
 }
 
-template <int W>
-inline vec3 lane(const Vec3<W>& v, int i) {
-    return vec3(get(v.x, i), get(v.y, i), get(v.z, i));
-}
-
 /// Adds value * weight to the lanes' pixel slots (lanes may share a slot: one at a time).
 template <int W>
 inline void accumulate(const ShadeTarget& out, const vint<W>& slot, const Vec3<W>& value,

@@ -444,41 +444,94 @@ template <int W>
 SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
                             vmask<W> active) {
     SurfacePacket<W> sp;
+    if (none(active)) return sp;
     // gather: lanes on meshes get their triangle's vertices, normals and uvs in SoA
-    alignas(64) float pos[3][3][W] = {}, nrm[3][3][W] = {}, tex[3][2][W] = {};
-    alignas(64) int32_t material[W] = {};
+    Vec3<W> pos[3], nrm[3];
+    vfloat<W> tex[3][2];
     uint32_t mesh_bits = 0, normal_bits = 0, uv_bits = 0;
-    for_each_active(active, [&](int i) {
-        const Object& object = scene.objects[static_cast<uint32_t>(get(hits.object, i))];
-        material[i] = static_cast<int32_t>(object.material);
-        if (object.kind != ShapeKind::mesh) return;
-        mesh_bits |= 1u << i;
-        const Mesh& mesh = scene.meshes[object.shape];
-        const uint32_t prim = static_cast<uint32_t>(get(hits.prim, i));
-        const uvec3 tri = mesh.tris[prim];
-        for (int c = 0; c < 3; ++c)
-            for (int k = 0; k < 3; ++k) pos[c][k][i] = mesh.positions[tri[c]][k];
-        if (!mesh.normal_tris.empty()) {
-            normal_bits |= 1u << i;
-            const uvec3 nt = mesh.normal_tris[prim];
+    const int32_t first_index = get(hits.object, first_active(active));
+    const Object& first_object = scene.objects[static_cast<uint32_t>(first_index)];
+    // one object (a shading batch holds one object's hits): its material, a mesh's values by
+    // vector gathers; else lane by lane
+    const bool one_object =
+        bits(mask_and(active, eq(hits.object, vint<W>(first_index)))) == bits(active);
+    if (one_object) sp.material = vint<W>(static_cast<int32_t>(first_object.material));
+    if (one_object && first_object.kind == ShapeKind::mesh) {
+        const Mesh& mesh = scene.meshes[first_object.shape];
+        mesh_bits = bits(active);
+        auto corners = [&](const std::vector<uvec3>& tris, vint<W>(&corner)[3]) {
+            const float* base = reinterpret_cast<const float*>(tris.data());
+            const vint<W> at = hits.prim * vint<W>(3);
             for (int c = 0; c < 3; ++c)
-                for (int k = 0; k < 3; ++k) nrm[c][k][i] = mesh.normals[nt[c]][k];
+                corner[c] = float_as_int(gather(base, at + vint<W>(c), active));
+        };
+        vint<W> corner[3];
+        corners(mesh.tris, corner);
+        const float* positions = reinterpret_cast<const float*>(mesh.positions.data());
+        for (int c = 0; c < 3; ++c) {
+            const vint<W> at = corner[c] * vint<W>(3);
+            pos[c] = {gather(positions, at, active), gather(positions, at + vint<W>(1), active),
+                      gather(positions, at + vint<W>(2), active)};
+        }
+        if (!mesh.normal_tris.empty()) {
+            normal_bits = mesh_bits;
+            corners(mesh.normal_tris, corner);
+            const float* normals = reinterpret_cast<const float*>(mesh.normals.data());
+            for (int c = 0; c < 3; ++c) {
+                const vint<W> at = corner[c] * vint<W>(3);
+                nrm[c] = {gather(normals, at, active), gather(normals, at + vint<W>(1), active),
+                          gather(normals, at + vint<W>(2), active)};
+            }
         }
         if (!mesh.uv_tris.empty()) {
-            uv_bits |= 1u << i;
-            const uvec3 ut = mesh.uv_tris[prim];
-            for (int c = 0; c < 3; ++c)
-                for (int k = 0; k < 2; ++k) tex[c][k][i] = mesh.uvs[ut[c]][k];
+            uv_bits = mesh_bits;
+            corners(mesh.uv_tris, corner);
+            const float* uvs = reinterpret_cast<const float*>(mesh.uvs.data());
+            for (int c = 0; c < 3; ++c) {
+                const vint<W> at = corner[c] * vint<W>(2);
+                tex[c][0] = gather(uvs, at, active);
+                tex[c][1] = gather(uvs, at + vint<W>(1), active);
+            }
         }
-    });
-    sp.material = load<W>(material);
+    } else if (!one_object) {
+        alignas(64) float p[3][3][W] = {}, n[3][3][W] = {}, t[3][2][W] = {};
+        alignas(64) int32_t material[W] = {};
+        for_each_active(active, [&](int i) {
+            const Object& object = scene.objects[static_cast<uint32_t>(get(hits.object, i))];
+            material[i] = static_cast<int32_t>(object.material);
+            if (object.kind != ShapeKind::mesh) return;
+            mesh_bits |= 1u << i;
+            const Mesh& mesh = scene.meshes[object.shape];
+            const uint32_t prim = static_cast<uint32_t>(get(hits.prim, i));
+            const uvec3 tri = mesh.tris[prim];
+            for (int c = 0; c < 3; ++c)
+                for (int k = 0; k < 3; ++k) p[c][k][i] = mesh.positions[tri[c]][k];
+            if (!mesh.normal_tris.empty()) {
+                normal_bits |= 1u << i;
+                const uvec3 nt = mesh.normal_tris[prim];
+                for (int c = 0; c < 3; ++c)
+                    for (int k = 0; k < 3; ++k) n[c][k][i] = mesh.normals[nt[c]][k];
+            }
+            if (!mesh.uv_tris.empty()) {
+                uv_bits |= 1u << i;
+                const uvec3 ut = mesh.uv_tris[prim];
+                for (int c = 0; c < 3; ++c)
+                    for (int k = 0; k < 2; ++k) t[c][k][i] = mesh.uvs[ut[c]][k];
+            }
+        });
+        sp.material = load<W>(material);
+        for (int c = 0; c < 3; ++c) {
+            pos[c] = load_vec3<W>(p[c][0], p[c][1], p[c][2]);
+            nrm[c] = load_vec3<W>(n[c][0], n[c][1], n[c][2]);
+            tex[c][0] = load<W>(t[c][0]);
+            tex[c][1] = load<W>(t[c][1]);
+        }
+    }
     // mesh: the scalar formulas, W lanes at a time
     if (mesh_bits != 0) {
         const vmask<W> on_mesh = mask_from_bits<W>(mesh_bits);
         const vfloat<W> u = hits.u, v = hits.v, w = vfloat<W>(1.0f) - u - v;
-        const Vec3<W> a = load_vec3<W>(pos[0][0], pos[0][1], pos[0][2]);
-        const Vec3<W> b = load_vec3<W>(pos[1][0], pos[1][1], pos[1][2]);
-        const Vec3<W> c = load_vec3<W>(pos[2][0], pos[2][1], pos[2][2]);
+        const Vec3<W>&a = pos[0], &b = pos[1], &c = pos[2];
         const Vec3<W> p = w * a + u * b + v * c;
         const Vec3<W> cr = cross(b - a, c - a);
         Vec3<W> ng = normalize(cr);
@@ -488,22 +541,15 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
             mask_andnot(on_mesh, mask_and(n2 >= vfloat<W>(std::numeric_limits<float>::min()),
                                           n2 <= vfloat<W>(std::numeric_limits<float>::max())));
         if (any(unsafe)) {
-            float nx[W], ny[W], nz[W];
-            store(nx, ng.x), store(ny, ng.y), store(nz, ng.z);
             for_each_active(unsafe, [&](int i) {
                 const vec3 d =
-                    triangle_normal_in_double(vec3(pos[0][0][i], pos[0][1][i], pos[0][2][i]),
-                                              vec3(pos[1][0][i], pos[1][1][i], pos[1][2][i]),
-                                              vec3(pos[2][0][i], pos[2][1][i], pos[2][2][i]));
-                nx[i] = d.x, ny[i] = d.y, nz[i] = d.z;
+                    triangle_normal_in_double(get_vec3(a, i), get_vec3(b, i), get_vec3(c, i));
+                set(ng.x, i, d.x), set(ng.y, i, d.y), set(ng.z, i, d.z);
             });
-            ng = load_vec3<W>(nx, ny, nz);
         }
         Vec3<W> ns = ng;
         if (normal_bits != 0) {
-            const Vec3<W> n = w * load_vec3<W>(nrm[0][0], nrm[0][1], nrm[0][2]) +
-                              u * load_vec3<W>(nrm[1][0], nrm[1][1], nrm[1][2]) +
-                              v * load_vec3<W>(nrm[2][0], nrm[2][1], nrm[2][2]);
+            const Vec3<W> n = w * nrm[0] + u * nrm[1] + v * nrm[2];
             const vfloat<W> len = length(n);
             const vmask<W> usable =
                 mask_and(mask_and(len > vfloat<W>(0.0f), len < vfloat<W>(infinity)),
@@ -513,12 +559,8 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
         vfloat<W> tu = u, tv = v;
         if (uv_bits != 0) {
             const vmask<W> has_uv = mask_from_bits<W>(uv_bits);
-            tu =
-                select(has_uv,
-                       w * load<W>(tex[0][0]) + u * load<W>(tex[1][0]) + v * load<W>(tex[2][0]), u);
-            tv =
-                select(has_uv,
-                       w * load<W>(tex[0][1]) + u * load<W>(tex[1][1]) + v * load<W>(tex[2][1]), v);
+            tu = select(has_uv, w * tex[0][0] + u * tex[1][0] + v * tex[2][0], u);
+            tv = select(has_uv, w * tex[0][1] + u * tex[1][1] + v * tex[2][1], v);
         }
         sp.position = select(on_mesh, p, sp.position);
         sp.geometric_normal = select(on_mesh, ng, sp.geometric_normal);
