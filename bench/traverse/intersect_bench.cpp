@@ -3,7 +3,8 @@
 // contender traces the same triangles). Ray sets: primary rays at 1920x1080 (1 sample at pixel
 // centres, in 16x16 tiles of 4x4 blocks), shadow rays from the primary hits to the scene's
 // lights in the renderer's order (per tile and light, one packet per 4x4 pixels, inactive slots
-// where the primary ray missed), and one cosine-distributed bounce ray per hit (incoherent).
+// where the primary ray missed or the point faces away from the light), and one
+// cosine-distributed bounce ray per hit (incoherent).
 // Contenders: Raylane scalar, Raylane packet at every width, and Embree 3 (rtcIntersect1 / 1M / 16,
 // rtcOccluded1 / 16) when it is installed. 1 and 2 threads (oneTBB; chunks of 256 rays).
 #include <benchmark/benchmark.h>
@@ -129,13 +130,14 @@ Workload* workload(const std::string& name) {
     w->primary = primary_rays(w->scene.camera);
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-    // shadow rays as the renderer's camera pass traces them: for each 16x16 tile with a hit and
-    // each light, a block of 16 packets, one per 4x4-pixel packet of primary rays, a ray where
-    // the primary ray hit and an inactive slot (t_max = -1) elsewhere (the bottom row's tiles
-    // are 16x8: two of them make a block)
+    // shadow rays as the renderer's camera pass traces them: for each 16x16 tile and each light
+    // that lights a point of it, a block of 16 packets, one per 4x4-pixel packet of primary rays,
+    // a ray where the primary ray hit a point facing the light and an inactive slot (t_max = -1)
+    // elsewhere (the bottom row's tiles are 16x8: two of them make a block)
+    static_assert(tile_rays == size_t(max_block_rays) && chunk % tile_rays == 0);
     for (size_t tile = 0; tile < w->primary.size(); tile += tile_rays) {
         const size_t n = std::min(tile_rays, w->primary.size() - tile);
-        std::vector<vec3> from(tile_rays);
+        std::vector<vec3> from(tile_rays), normal(tile_rays);
         std::vector<bool> hit(tile_rays, false);
         for (size_t i = 0; i < n; ++i) {
             const Ray& r = w->primary[tile + i];
@@ -147,6 +149,7 @@ Workload* workload(const std::string& name) {
             const vec3 o = offset_ray_origin(sp.position, n_g, ray_reach(r, h.t));
             hit[i] = true;
             from[i] = o;
+            normal[i] = n_g;
             const float u1 = uni(rng), u2 = uni(rng), rad = std::sqrt(u1), phi = 6.2831853f * u2;
             const vec3 t = glm::normalize(std::fabs(n_g.x) > 0.5f ? glm::cross(n_g, vec3(0, 1, 0))
                                                                   : glm::cross(n_g, vec3(1, 0, 0)));
@@ -160,13 +163,18 @@ Workload* workload(const std::string& name) {
         if (any == hit.end()) continue;
         const vec3 spare = from[size_t(any - hit.begin())];  // finite data for inactive slots
         for (const Light& light : w->scene.lights) {
+            std::vector<Ray> block;
+            bool lit_any = false;
             for (size_t k = 0; k < tile_rays; ++k) {
                 const vec3 o = hit[k] ? from[k] : spare;
                 Ray r = light.kind == LightKind::point ? Ray{o, light.position - o, 0.0f, 1.0f}
                                                        : Ray{o, light.direction, 0.0f, infinity};
-                if (!hit[k]) r.t_max = -1.0f;
-                w->shadow.push_back(r);
+                const bool lit = hit[k] && glm::dot(normal[k], r.dir) > 0.0f;
+                if (!lit) r.t_max = -1.0f;
+                lit_any = lit_any || lit;
+                block.push_back(r);
             }
+            if (lit_any) w->shadow.insert(w->shadow.end(), block.begin(), block.end());
         }
     }
     w->primary_soa = make_soa(w->primary);
@@ -328,7 +336,8 @@ void bench_embree16(benchmark::State& state, std::string scene, std::string set,
     run(state, rays, threads, [&](size_t first, size_t last) {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
-        if (set == "primary") ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        // coherent: camera rays, and shadow rays in 4x4-pixel packets per light
+        if (set != "bounce") ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         if (stream) {
             alignas(64) RTCRayHit rh[chunk];
             const size_t n = std::min(last, rays.size()) - first;

@@ -18,8 +18,8 @@ namespace raylane {
 inline constexpr size_t pad = 16;
 
 /// Rays of the path tree (camera, mirror, glass and glossy rays) whose radiance, times `weight`,
-/// goes to pixel `slot` of the tile. `filter` is Beer's law over the distance to the ray's hit
-/// (1 outside glass).
+/// goes to `slot` of the wavefront (one sample of one of the tile's pixels). `filter` is Beer's law
+/// over the distance to the ray's hit (1 outside glass).
 struct PathQueue {
     std::vector<float> ox, oy, oz, dx, dy, dz;
     std::vector<float> wr, wg, wb;
@@ -71,7 +71,7 @@ struct PathQueue {
 };
 
 /// Shadow rays towards one light: when the segment (0, t_max) is free, `contribution` is added
-/// to pixel `slot`.
+/// to wavefront slot `slot`.
 struct ShadowQueue {
     std::vector<float> ox, oy, oz, dx, dy, dz, t_max, cr, cg, cb;
     std::vector<int32_t> slot;

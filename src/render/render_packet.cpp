@@ -86,28 +86,29 @@ void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays
     }
 }
 
-/// Samples of a tile's pixels traced together in one wavefront: its camera rays go in pixel by
-/// pixel (a camera packet's samples one after the other), so the secondary rays of a packet come
-/// from a few neighbouring pixels rather than from sixteen, and stay together longer.
+/// Samples of a tile's pixels traced together in one wavefront: its camera rays go in camera
+/// packet by camera packet (a packet's samples one after the other), so the secondary rays of a
+/// packet come from a few neighbouring pixels rather than from sixteen, and stay together longer.
 constexpr int max_batch_samples = 16;
 
-/// Rays per camera ray that a wavefront of max_batch_samples samples may spawn before its queues
-/// outgrow the cache (then fewer samples per wavefront, down to one).
-constexpr int wavefront_ray_budget = 96;
+/// Samples per wavefront times the rays a camera ray may spawn (an estimate, below): kept under
+/// this, a wavefront's queues stay about as large as one sample's of a scene with a few shadow
+/// rays per hit, which fit the cache.
+constexpr int64_t wavefront_ray_budget = 96;
 
-/// The samples per wavefront for a scene: up to max_batch_samples, fewer when its hits spawn
-/// many rays (shadow rays to every light sample, times the glossy rays and their own shadow
-/// rays). A property of the scene alone, so the same for any thread count: the summation order
-/// of a pixel's contributions, and so the image, depends on it.
+/// The samples per wavefront: up to max_batch_samples, fewer when hits spawn many rays (shadow
+/// rays to every light sample, times the glossy rays and their own shadow rays). It depends on
+/// the scene and the sample-count options only, never on threads or timing: the summation order
+/// of a pixel's contributions, and so the image's last bits, depend on it.
 int samples_per_wavefront(const Scene& scene, const ShadeParams& params) {
-    int shadow = 0, glossy = 0;
+    int64_t shadow = 0, glossy = 0;  // 64 bits: any number of lights of 4096 samples
     for (const Light& light : scene.lights)
         if (light.shadows) shadow += light_sample_count(light, params);
     for (const Material& m : scene.materials)
         if (m.model == SpecularModel::glossy_phong)
-            glossy = std::max(glossy, glossy_sample_count(m, params));
-    const int rays = std::max(shadow, 1) * (1 + glossy);
-    return std::clamp(wavefront_ray_budget / rays, 1, max_batch_samples);
+            glossy = std::max<int64_t>(glossy, glossy_sample_count(m, params));
+    const int64_t rays = std::max<int64_t>(shadow, 1) * (1 + glossy);
+    return static_cast<int>(std::clamp<int64_t>(wavefront_ray_budget / rays, 1, max_batch_samples));
 }
 
 /// A wavefront's slots: sample j of the batch, tile slot i (a pixel) is slot
@@ -287,7 +288,7 @@ constexpr uint32_t group_secondary = feature_reflection | feature_refraction | f
 template <uint32_t F>
 constexpr bool has_secondary_rays = (F & group_secondary) != 0;
 
-/// shade_tile_sample for scenes without secondary rays: one pass, so the camera block is traced
+/// shade_tile_samples for scenes without secondary rays: one pass, so the camera block is traced
 /// and each packet shaded where it stands, its lanes grouped by the object they hit (one
 /// material each), into value[] in registers; the shadow rays of each light sample stay in
 /// their packets and are traced as a block. No queue, sort by material, gathers or scatters;
@@ -418,7 +419,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 sum[count] = PixelSumPacket<W>{};
                 if constexpr (has_secondary_rays<F>) {  // the wavefront's slot -> pixel map
                     for_each_active(active[count], [&](int i) {
-                        for (int j = 0; j < max_batch_samples; ++j)
+                        for (int j = 0; j < wavefront_samples; ++j)
                             b.pixel[j * max_block_rays + get(slot[count], i)] =
                                 get(pixel[count], i);
                     });
@@ -473,6 +474,8 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 } else if constexpr (!has_secondary_rays<F>) {
                     shade_camera_block<W, F>(scene, accel, shade, s0, params.seed, rays, active,
                                              slot, pixel, count, value, counts);
+                } else {
+                    assert(false);  // colour with secondary rays is always batched (below)
                 }
                 add_values();
                 continue;

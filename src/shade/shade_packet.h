@@ -177,7 +177,7 @@ inline Vec3<W> miss_radiance(const Scene& scene, const vint<W>& env_map, const V
 }
 
 /// What shading needs of W rays and their closest hits, in registers (the fields of a PathQueue
-/// entry, its hit, and the pixel index that keys its random numbers).
+/// entry, its hit, and the pixel and sample indices that key its random numbers).
 template <int W>
 struct ShadeInput {
     RayPacket<W> rays;

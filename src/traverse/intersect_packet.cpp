@@ -440,6 +440,21 @@ vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W
     return found;
 }
 
+namespace {
+
+/// Whether surface_at may read a mesh's arrays by 32-bit gathers: every float index (three per
+/// triangle or vertex, two per uv) fits an int32. Larger meshes take the lane-by-lane path.
+bool gatherable(const Mesh& mesh) {
+    static_assert(sizeof(uvec3) == 12 && sizeof(vec3) == 12 && sizeof(vec2) == 8);
+    constexpr size_t most = size_t(std::numeric_limits<int32_t>::max()) / 3;
+    for (size_t n : {mesh.tris.size(), mesh.positions.size(), mesh.normal_tris.size(),
+                     mesh.normals.size(), mesh.uv_tris.size(), mesh.uvs.size()})
+        if (n > most) return false;
+    return true;
+}
+
+}  // namespace
+
 template <int W>
 SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
                             vmask<W> active) {
@@ -451,12 +466,14 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
     uint32_t mesh_bits = 0, normal_bits = 0, uv_bits = 0;
     const int32_t first_index = get(hits.object, first_active(active));
     const Object& first_object = scene.objects[static_cast<uint32_t>(first_index)];
-    // one object (a shading batch holds one object's hits): its material, a mesh's values by
-    // vector gathers; else lane by lane
+    // one object (the camera pass shades a packet object by object, the wavefront material by
+    // material, mostly one object): its material, a mesh's values by vector gathers (while
+    // the indices fit an int); else lane by lane
     const bool one_object =
         bits(mask_and(active, eq(hits.object, vint<W>(first_index)))) == bits(active);
     if (one_object) sp.material = vint<W>(static_cast<int32_t>(first_object.material));
-    if (one_object && first_object.kind == ShapeKind::mesh) {
+    const bool one_mesh = one_object && first_object.kind == ShapeKind::mesh;
+    if (one_mesh && gatherable(scene.meshes[first_object.shape])) {
         const Mesh& mesh = scene.meshes[first_object.shape];
         mesh_bits = bits(active);
         auto corners = [&](const std::vector<uvec3>& tris, vint<W>(&corner)[3]) {
@@ -493,7 +510,7 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
                 tex[c][1] = gather(uvs, at + vint<W>(1), active);
             }
         }
-    } else if (!one_object) {
+    } else if (!one_object || one_mesh) {
         alignas(64) float p[3][3][W] = {}, n[3][3][W] = {}, t[3][2][W] = {};
         alignas(64) int32_t material[W] = {};
         for_each_active(active, [&](int i) {

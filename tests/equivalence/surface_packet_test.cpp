@@ -1,11 +1,13 @@
 // Equivalence of the packet surface_at (traverse/intersect_packet.cpp) with the scalar one: the
 // same position, normals, uv and material bit for bit in every hit lane, at every packet width,
 // for packets of one object (a mesh's triangles gathered W at a time, a plane W at a time) and
-// of several objects (lane by lane), on a mesh with normals and uvs (the apple) and on analytic
-// shapes.
+// of several objects (lane by lane): a mesh with normals and uvs of its own (the apple), two
+// meshes in one scene (the apple and the bunny, which has neither), analytic shapes. Inactive
+// lanes hold out-of-range ids, which the packet path must not read.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -61,6 +63,8 @@ void check_packets(const Scene& scene, const std::vector<RayHit>& hits, bool one
         }
         RayPacket<W> rays;
         HitPacket<W> packet;
+        packet.prim = vint<W>(0x7ffffff0);  // inactive lanes: ids far out of range
+        packet.object = vint<W>(0x7ffffff0);
         uint32_t lanes = 0;
         for (size_t i = first; i < last; ++i) {
             const int l = int(i - first);
@@ -90,16 +94,42 @@ void check_packets(const Scene& scene, const std::vector<RayHit>& hits, bool one
     }
 }
 
+/// The apple beside the bunny, on a floor: two meshes, one with normals and uvs, one without.
+Scene two_meshes() {
+    return load_scene_from_string(R"({
+      "version": 1,
+      "camera": {"position": [0, 0.6, -2.2], "look_at": [0, 0.1, 0], "fov_deg": 50,
+                 "resolution": [64, 48], "spp": 1},
+      "materials": {"m": {"c_d": [0.5, 0.5, 0.5], "k_d": 0.5},
+                    "apple": {"c_d": [0.8, 0.2, 0.1], "k_d": 0.5}},
+      "objects": [
+        {"shape": "plane", "point": [0, -0.3, 0], "normal": [0, 1, 0], "material": "m"},
+        {"shape": "mesh", "file": "apple/food_apple_01_4k.obj", "material": "apple",
+         "fit": {"size": 0.8}, "transform": {"translate": [-0.45, -0.3, 0]}},
+        {"shape": "mesh", "file": "bunny.ply", "material": "m",
+         "fit": {"size": 0.8}, "transform": {"translate": [0.45, -0.3, 0]}}
+      ],
+      "lights": [{"type": "point", "position": [0, 3, -2], "intensity": 10}]
+    })",
+                                  std::string(RAYLANE_SOURCE_DIR) + "/scenes/two_meshes.json");
+}
+
 TYPED_TEST(SurfaceAtPacket, SameSurfaceAsTheScalarPath) {
     constexpr int W = TypeParam::value;
-    for (const std::string name : {"fig07b_apple_normal_map", "diffuse_shapes", "builtin"}) {
-        Scene scene =
-            name == "builtin"
-                ? make_builtin_scene()
-                : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
+    for (const std::string name : {"fig07b_apple_normal_map", "two meshes", "builtin"}) {
+        Scene scene;
+        if (name == "builtin")
+            scene = make_builtin_scene();
+        else if (name == "two meshes")
+            scene = two_meshes();
+        else
+            scene = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
         const Accel accel = build_accel(scene, BuildParams{});
         std::vector<RayHit> hits = camera_hits(scene, accel, 64, 48);
         ASSERT_GT(hits.size(), 1000u) << name;
+        std::set<uint32_t> objects;  // every object of the scene is seen
+        for (const RayHit& h : hits) objects.insert(h.hit.object);
+        EXPECT_EQ(objects.size(), scene.objects.size()) << name;
         // image order: packets on the edges of objects hold several (lane by lane)
         int mixed = 0;
         check_packets<W>(scene, hits, false, name + ", image order", mixed);
