@@ -476,32 +476,33 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
     if (one_mesh && gatherable(scene.meshes[first_object.shape])) {
         const Mesh& mesh = scene.meshes[first_object.shape];
         mesh_bits = bits(active);
+        // the lanes' triangles' corner indices in `tris`
         auto corners = [&](const std::vector<uvec3>& tris, vint<W>(&corner)[3]) {
             const float* base = reinterpret_cast<const float*>(tris.data());
             const vint<W> at = hits.prim * vint<W>(3);
             for (int c = 0; c < 3; ++c)
                 corner[c] = float_as_int(gather(base, at + vint<W>(c), active));
         };
-        vint<W> corner[3];
-        corners(mesh.tris, corner);
-        const float* positions = reinterpret_cast<const float*>(mesh.positions.data());
-        for (int c = 0; c < 3; ++c) {
-            const vint<W> at = corner[c] * vint<W>(3);
-            pos[c] = {gather(positions, at, active), gather(positions, at + vint<W>(1), active),
-                      gather(positions, at + vint<W>(2), active)};
-        }
-        if (!mesh.normal_tris.empty()) {
-            normal_bits = mesh_bits;
-            corners(mesh.normal_tris, corner);
-            const float* normals = reinterpret_cast<const float*>(mesh.normals.data());
+        // the three corners' vectors of `values` for the index triples in `tris`
+        auto corner_vectors = [&](const std::vector<uvec3>& tris, const std::vector<vec3>& values,
+                                  Vec3<W>(&out)[3]) {
+            vint<W> corner[3];
+            corners(tris, corner);
+            const float* base = reinterpret_cast<const float*>(values.data());
             for (int c = 0; c < 3; ++c) {
                 const vint<W> at = corner[c] * vint<W>(3);
-                nrm[c] = {gather(normals, at, active), gather(normals, at + vint<W>(1), active),
-                          gather(normals, at + vint<W>(2), active)};
+                out[c] = {gather(base, at, active), gather(base, at + vint<W>(1), active),
+                          gather(base, at + vint<W>(2), active)};
             }
+        };
+        corner_vectors(mesh.tris, mesh.positions, pos);
+        if (!mesh.normal_tris.empty()) {
+            normal_bits = mesh_bits;
+            corner_vectors(mesh.normal_tris, mesh.normals, nrm);
         }
         if (!mesh.uv_tris.empty()) {
             uv_bits = mesh_bits;
+            vint<W> corner[3];
             corners(mesh.uv_tris, corner);
             const float* uvs = reinterpret_cast<const float*>(mesh.uvs.data());
             for (int c = 0; c < 3; ++c) {

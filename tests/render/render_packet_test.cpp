@@ -26,6 +26,13 @@ template <class T>
 class RenderPacket : public ::testing::Test {};
 TYPED_TEST_SUITE(RenderPacket, Widths, WidthName);
 
+/// The built-in scene, or scenes/NAME.json.
+Scene scene_named(const std::string& name) {
+    return name == "builtin"
+               ? make_builtin_scene()
+               : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
+}
+
 Scene small(Scene scene, int width) {
     scene.camera.height = std::max(1, scene.camera.height * width / scene.camera.width);
     scene.camera.width = width;
@@ -48,9 +55,7 @@ TYPED_TEST(RenderPacket, MatchesScalarWithJitteredSamples) {
         const std::string what = std::string(name) + ", " + std::to_string(spp) + " spp";
         Scene scene;
         try {
-            scene = std::string(name) == "builtin"
-                        ? make_builtin_scene()
-                        : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
+            scene = scene_named(name);
         } catch (const std::exception& e) {
             ADD_FAILURE() << what << ": " << e.what();  // a missing model fails, never skips
             continue;
@@ -78,11 +83,7 @@ TYPED_TEST(RenderPacket, MatchesScalarWithJitteredSamples) {
 TYPED_TEST(RenderPacket, AovsMatchScalar) {
     constexpr int W = TypeParam::value;
     for (const char* name : {"builtin", "fig05_refractive_sphere"}) {
-        const Scene scene =
-            small(std::string(name) == "builtin"
-                      ? make_builtin_scene()
-                      : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json"),
-                  64);
+        const Scene scene = small(scene_named(name), 64);
         const Accel accel = build_accel(scene, BuildParams{});
         for (Aov aov : {Aov::normal, Aov::depth, Aov::bvh_cost}) {
             RenderParams p;
@@ -112,11 +113,7 @@ TYPED_TEST(RenderPacket, AovsMatchScalar) {
 /// make a batch of 16 and one of 3).
 TEST(RenderPacket, SameImageForOneAndTwoThreads) {
     for (const char* name : {"builtin", "fig10_glass_bunny"}) {
-        const Scene scene =
-            small(std::string(name) == "builtin"
-                      ? make_builtin_scene()
-                      : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json"),
-                  80);
+        const Scene scene = small(scene_named(name), 80);
         const Accel accel = build_accel(scene, BuildParams{});
         RenderParams p;
         p.spp = std::string(name) == "builtin" ? 2 : 19;
