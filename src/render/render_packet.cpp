@@ -111,7 +111,7 @@ int samples_per_wavefront(const Scene& scene, const ShadeParams& params) {
     return static_cast<int>(std::clamp<int64_t>(wavefront_ray_budget / rays, 1, max_batch_samples));
 }
 
-/// A wavefront's slots: sample j of the batch, tile slot i (a pixel) is slot
+/// A wavefront's slots (shade_packet.h, SlotMap): sample j of the batch at tile slot i is slot
 /// j * max_block_rays + i.
 constexpr int max_slots = max_batch_samples * max_block_rays;
 
@@ -121,7 +121,7 @@ struct TileBuffers {
     HitArrays hits;
     std::vector<ShadowQueue> shadows;  ///< one per light
     std::vector<int32_t> order, material_count;
-    int32_t pixel[max_slots], sample[max_slots];  ///< each slot's pixel and sample index
+    int32_t pixel[max_block_rays];  ///< each tile slot's image pixel
     float acc_r[max_slots], acc_g[max_slots], acc_b[max_slots];
 };
 
@@ -203,7 +203,7 @@ void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q,
 /// trace, Beer's law, misses, sort by material, shade, shadows - until no rays are left.
 template <int W, uint32_t F>
 void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParams& params,
-                        uint32_t seed, TileBuffers& b, ShadeCounts& counts) {
+                        int32_t first_sample, uint32_t seed, TileBuffers& b, ShadeCounts& counts) {
     const size_t materials = scene.materials.size();
     if (b.shadows.size() < scene.lights.size()) b.shadows.resize(scene.lights.size());
     b.material_count.resize(materials + 1);
@@ -260,7 +260,7 @@ void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParam
                                  .next = &b.next,
                                  .next_inside = &b.next_inside,
                                  .counts = &counts};
-        const SlotMap slots{.pixel = b.pixel, .sample = b.sample};
+        const SlotMap slots{.pixel = b.pixel, .first_sample = first_sample};
         int begin = 0;
         for (size_t m = 0; m < materials; ++m) {
             const int end = b.material_count[m];
@@ -419,9 +419,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 sum[count] = PixelSumPacket<W>{};
                 if constexpr (has_secondary_rays<F>) {  // the wavefront's slot -> pixel map
                     for_each_active(active[count], [&](int i) {
-                        for (int j = 0; j < wavefront_samples; ++j)
-                            b.pixel[j * max_block_rays + get(slot[count], i)] =
-                                get(pixel[count], i);
+                        b.pixel[get(slot[count], i)] = get(pixel[count], i);
                     });
                 }
             }
@@ -486,8 +484,6 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
             std::fill(b.acc_r, b.acc_r + n * max_block_rays, 0.0f);
             std::fill(b.acc_g, b.acc_g + n * max_block_rays, 0.0f);
             std::fill(b.acc_b, b.acc_b + n * max_block_rays, 0.0f);
-            for (int j = 0; j < n; ++j)
-                std::fill_n(b.sample + j * max_block_rays, max_block_rays, s0 + j);
             const Vec3<W> one = make_vec3<W>(1.0f, 1.0f, 1.0f);
             const vint<W> zero(0), none(-1);
             for (int p = 0; p < count; ++p) {
@@ -498,7 +494,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                                    zero, active[p]);
                 }
             }
-            shade_tile_samples<W, F>(scene, accel, shade, params.seed, b, counts);
+            shade_tile_samples<W, F>(scene, accel, shade, s0, params.seed, b, counts);
             for (int j = 0; j < n; ++j) {
                 for (int p = 0; p < count; ++p) {
                     const vint<W> at = slot[p] + vint<W>(j * max_block_rays);

@@ -188,11 +188,16 @@ struct ShadeInput {
     vmask<W> local_only;
 };
 
-/// What each slot of a tile's wavefront stands for: the image pixel and the sample index of the
-/// path whose radiance it gathers (a wavefront may hold several samples of the tile's pixels).
+/// A wavefront holds several samples of a tile's pixels: sample j of its batch at tile slot i (a
+/// pixel of the tile) is wavefront slot j * max_block_rays + i.
+inline constexpr int tile_slot_bits = 8;
+static_assert(max_block_rays == 1 << tile_slot_bits);
+
+/// What a wavefront's slots stand for: the image pixel of each tile slot, and the sample index of
+/// the batch's first sample (slot s is sample first_sample + s / max_block_rays).
 struct SlotMap {
     const int32_t* pixel = nullptr;
-    const int32_t* sample = nullptr;
+    int32_t first_sample = 0;
 };
 
 /// Queue entries idx[0..k) of `q` with their hits `h` as shading input (gathers); `slots` maps
@@ -228,8 +233,9 @@ inline ShadeInput<W> gather_shade_input(const PathQueue& q, const HitArrays& h,
     in.env = gather_lanes<W>(q.env_map, ids, active, int32_t{-1});
     in.local_only =
         mask_andnot(active, eq(gather_lanes<W>(q.local_only, ids, active, int32_t{0}), vint<W>(0)));
-    in.pixel = float_as_int(gather(reinterpret_cast<const float*>(slots.pixel), in.slot, active));
-    in.sample = float_as_int(gather(reinterpret_cast<const float*>(slots.sample), in.slot, active));
+    const vint<W> tile_slot = in.slot & vint<W>(max_block_rays - 1);
+    in.pixel = float_as_int(gather(reinterpret_cast<const float*>(slots.pixel), tile_slot, active));
+    in.sample = vint<W>(slots.first_sample) + shift_right_logical<tile_slot_bits>(in.slot);
     return in;
 }
 
