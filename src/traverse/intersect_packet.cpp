@@ -651,6 +651,12 @@ struct BlockBounds {
     float t_min = infinity;                  ///< smallest t_min of the active lanes
     bool usable[3] = {false, false, false};  ///< reciprocals finite and of one sign on this axis
     int dir_neg[3] = {0, 0, 0};              ///< the block's direction signs, for near-first order
+    /// The same bounds for block_may_hit, mirrored (coordinates negated on axes of negative
+    /// directions: neg) so that every reciprocal is positive; an unusable axis gets origins
+    /// [-inf, inf] and reciprocals [1, 1], which bound nothing.
+    bool neg[3] = {false, false, false};
+    vec3 mirrored_org_lo{-infinity}, mirrored_org_hi{infinity};
+    vec3 mirrored_inv_lo{1.0f}, mirrored_inv_hi{1.0f};
 };
 
 template <int W>
@@ -704,28 +710,32 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
         const bool positive = d_lo > 0.0f && b.inv_lo[k] > 0.0f;
         const bool negative = d_hi < 0.0f && b.inv_hi[k] < 0.0f;
         b.usable[k] = finite && (positive || negative);
+        if (b.usable[k]) {
+            b.neg[k] = negative;
+            b.mirrored_org_lo[k] = negative ? -b.org_hi[k] : b.org_lo[k];
+            b.mirrored_org_hi[k] = negative ? -b.org_lo[k] : b.org_hi[k];
+            b.mirrored_inv_lo[k] = negative ? -b.inv_hi[k] : b.inv_lo[k];
+            b.mirrored_inv_hi[k] = negative ? -b.inv_lo[k] : b.inv_hi[k];
+        }
     }
     return b;
 }
 
 /// False only when no ray of the block can touch the box at t >= the block's smallest t_min:
 /// interval arithmetic over the origins and reciprocals, with a relative margin far above float
-/// rounding.
+/// rounding. In the mirrored space every reciprocal is positive, so the smallest entry distance
+/// is (lo - largest origin) times the smallest or largest reciprocal by its sign, and the largest
+/// exit distance likewise: the products of the four-corner bound that win, branch-free.
 bool block_may_hit(const BlockBounds& b, const BvhNode& node) {
     float t0 = b.t_min, t1 = infinity;
     for (int k = 0; k < 3; ++k) {
-        if (!b.usable[k]) continue;
-        const bool neg = b.inv_hi[k] < 0.0f;
-        const float enter = neg ? node.hi[k] : node.lo[k];
-        const float exit = neg ? node.lo[k] : node.hi[k];
-        const float e0 = enter - b.org_hi[k], e1 = enter - b.org_lo[k];
-        const float x0 = exit - b.org_hi[k], x1 = exit - b.org_lo[k];
-        const float enter_min = std::min(std::min(e0 * b.inv_lo[k], e0 * b.inv_hi[k]),
-                                         std::min(e1 * b.inv_lo[k], e1 * b.inv_hi[k]));
-        const float exit_max = std::max(std::max(x0 * b.inv_lo[k], x0 * b.inv_hi[k]),
-                                        std::max(x1 * b.inv_lo[k], x1 * b.inv_hi[k]));
-        t0 = std::max(t0, enter_min);
-        t1 = std::min(t1, exit_max);
+        const float lo = b.neg[k] ? -node.hi[k] : node.lo[k];
+        const float hi = b.neg[k] ? -node.lo[k] : node.hi[k];
+        const float a = lo - b.mirrored_org_hi[k], c = hi - b.mirrored_org_lo[k];
+        const float enter = a * (a < 0.0f ? b.mirrored_inv_hi[k] : b.mirrored_inv_lo[k]);
+        const float exit = c * (c < 0.0f ? b.mirrored_inv_lo[k] : b.mirrored_inv_hi[k]);
+        t0 = std::max(t0, enter);
+        t1 = std::min(t1, exit);
     }
     const float margin = 1e-4f * (std::fabs(t0) + std::fabs(t1 == infinity ? 0.0f : t1)) + 1e-30f;
     return t0 <= t1 + margin;
