@@ -8,9 +8,11 @@
 // the same values as the scalar path; garbage in inactive lanes cannot trap.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "shade/brdf_scalar.h"
+#include "simd/lanes.h"
 #include "simd/math.h"
 #include "simd/simd.h"
 #include "simd/vec3.h"
@@ -136,12 +138,28 @@ inline Vec3<W> brdf_detail::around_axis(const Vec3<W>& axis, const vfloat<W>& co
 
 // ---- lobes ----------------------------------------------------------------------------------
 
+/// The chord^2 from which phong_lobe's cos^e = exp(e ln cos) is below e^-110, so exactly 0 in
+/// float (the smallest float is e^-103.3): 2 (1 - e^(-110 / e)), rounded up; 2 (the lobe's edge)
+/// for e = 0. Kept for the last exponent asked, per thread.
+inline float phong_zero_chord2(float e) {
+    thread_local float last_e = 0.0f, last = 2.0f;
+    if (e != last_e) {
+        const double c = 2.0 * (1.0 - std::exp(-110.0 / static_cast<double>(e)));
+        last = std::min(std::nextafter(static_cast<float>(c), 4.0f), 2.0f);
+        last_e = e;
+    }
+    return last;
+}
+
 template <int W>
 inline vfloat<W> phong_lobe(const Vec3<W>& axis, const Vec3<W>& w, float e) {
     using namespace brdf_detail;
     const Vec3<W> d = w - axis;
     const vfloat<W> chord2 = dot(d, d);
-    const vfloat<W> p = exp<W>(clamp_exponent(e) * log1p<W>(-0.5f * chord2));
+    // every lane that far from the mirror direction: the lobe is 0 without exp and log1p
+    const float exponent = clamp_exponent(e);
+    if (none(chord2 < vfloat<W>(phong_zero_chord2(exponent)))) return vfloat<W>(0.0f);
+    const vfloat<W> p = exp<W>(exponent * log1p<W>(-0.5f * chord2));
     return select0<W>(chord2 < vfloat<W>(2.0f), p);
 }
 

@@ -224,11 +224,13 @@ inline Vec3<W> keep_above(const Vec3<W>& ns, const Vec3<W>& r) {
     using namespace texture_detail;
     const vfloat<W> c = dot(ns, r);
     const vfloat<W> cos_min(keep_above_cos);
+    const vmask<W> above = c >= cos_min;
+    if (all(above)) return ns;  // the common case: no lane to bend
     const Vec3<W> t = ns - r * c;
     const vfloat<W> t_length = sqrt(dot(t, t));
     const vfloat<W> s(std::sqrt(1.0f - keep_above_cos * keep_above_cos));
     const Vec3<W> bent = t * (s / t_length) + r * cos_min;
-    return select(c >= cos_min, ns, select(t_length > vfloat<W>(1e-6f), bent, r));
+    return select(above, ns, select(t_length > vfloat<W>(1e-6f), bent, r));
 }
 
 /// face_viewer of texture_scalar.h for every lane.

@@ -240,6 +240,50 @@ TYPED_TEST(BrdfPacket, LobesMatchScalar) {
     std::printf("W=%d lobes: max relative deviation %.3g\n", W, worst.rel);
 }
 
+/// phong_lobe skips exp and log1p for a packet whose every lane lies past phong_zero_chord2:
+/// there the lobe is exactly 0 by the formula itself (scalar and packet), the threshold sits at
+/// e ln cos = -110 (so it skips all it may), and a packet with one lane inside still computes it.
+TYPED_TEST(BrdfPacket, PhongLobeIsExactlyZeroWhereItsPacketsSkipIt) {
+    constexpr int W = TypeParam::value;
+    const vec3 axis(0.0f, 0.0f, 1.0f);
+    // a unit direction whose chord to the axis has length^2 c: cos = 1 - c / 2
+    auto at_chord2 = [&](float c) {
+        const float cos_t = 1.0f - 0.5f * c;
+        return vec3(std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t)), 0.0f, cos_t);
+    };
+    for (float e : {1.0f, 5.0f, 50.0f, 1000.0f, 1e6f}) {
+        SCOPED_TRACE("e = " + std::to_string(e));
+        const float c = phong_zero_chord2(e);
+        ASSERT_GT(c, 0.0f);
+        ASSERT_LE(c, 2.0f);
+        if (c < 2.0f) {
+            EXPECT_NEAR(double(e) * std::log1p(-0.5 * double(c)), -110.0, 0.01);
+        }
+        // every lane at or past c: 0 from the scalar formula and from the packet
+        alignas(64) float x[W], y[W], z[W];
+        for (int k = 0; k < W; ++k) {
+            const float ck = c + (2.0f - c) * static_cast<float>(k) / static_cast<float>(W);
+            const vec3 w = at_chord2(ck);
+            x[k] = w.x, y[k] = w.y, z[k] = w.z;
+            const vec3 d = w - axis;
+            if (glm::dot(d, d) >= c) {
+                EXPECT_EQ(phong_lobe(axis, w, e), 0.0f) << "chord^2 " << glm::dot(d, d);
+            }
+        }
+        const Vec3<W> ax = make_vec3<W>(0.0f, 0.0f, 1.0f);
+        Vec3<W> ws = load_vec3<W>(x, y, z);
+        for (int k = 0; k < W; ++k)
+            EXPECT_EQ(get(phong_lobe(ax, ws, e), k), phong_lobe(axis, vec3(x[k], y[k], z[k]), e));
+        // one lane well inside the lobe: the packet computes, and agrees with the scalar lobe
+        const vec3 inside = at_chord2(0.25f * c);
+        set(ws.x, 0, inside.x), set(ws.y, 0, inside.y), set(ws.z, 0, inside.z);
+        const float want = phong_lobe(axis, inside, e);
+        const float got = get(phong_lobe(ax, ws, e), 0);
+        EXPECT_GT(want, 0.0f);
+        EXPECT_NEAR(got, want, 1e-5f * want);
+    }
+}
+
 TYPED_TEST(BrdfPacket, ShadingFactorsMatchScalar) {
     constexpr int W = TypeParam::value;
     Rng rng(12);
