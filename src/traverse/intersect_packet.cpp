@@ -985,16 +985,17 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                 [&](int q, const BvhNode& node) { return test(f + q, node); },
                 [&](const BvhNode& leaf, int qf, int ql) {
                     for (int p = f + qf; p <= f + ql; ++p) {
-                        for (uint32_t j = leaf.index; j < leaf.index + leaf.count; ++j) {
-                            const vmask<W> m = test(p, leaf);
-                            if (none(m)) break;
+                        // the open lanes that touch the leaf, less those each triangle occludes
+                        vmask<W> m = test(p, leaf);
+                        for (uint32_t j = leaf.index; j < leaf.index + leaf.count && any(m); ++j) {
                             const TriangleVerts& tv = mesh.verts[j];
                             vfloat<W> t(infinity), u(0.0f), v(0.0f);
                             const vmask<W> h = intersect_triangle(
                                 wr[p], tv.a, tv.b, tv.c, rays[p].t_min, rays[p].t_max, t, u, v, m);
                             occluded[p] = mask_or(occluded[p], h);
-                            open[p] = mask_andnot(active[p], occluded[p]);
+                            m = mask_andnot(m, h);
                         }
+                        open[p] = mask_andnot(active[p], occluded[p]);
                     }
                 });
         }
