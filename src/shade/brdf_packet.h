@@ -3,13 +3,15 @@
 // so W = 1 matches the scalar path bit for bit and wider packets differ only by the vector
 // exp / log / log1p / expm1 / sin / cos of xsimd (a few ulps; see brdf_packet_test.cpp).
 //
-// Every function is lane-wise and pure: all lanes compute, nothing is written to memory except
-// the out-parameters, which get every lane. Lanes that fail a condition (ci <= 0, TIR, ...) get
-// the same values as the scalar path; garbage in inactive lanes cannot trap.
+// Every function is lane-wise and pure: nothing is written to memory except the out-parameters,
+// which get every lane. Lanes that fail a condition (ci <= 0, TIR, ...) get the same values as
+// the scalar path; garbage in inactive lanes cannot trap. All lanes compute, except where a whole
+// packet's result is known exactly without it (phong_lobe past phong_zero_chord2).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
@@ -138,14 +140,18 @@ inline Vec3<W> brdf_detail::around_axis(const Vec3<W>& axis, const vfloat<W>& co
 
 // ---- lobes ----------------------------------------------------------------------------------
 
-/// The chord^2 from which phong_lobe's cos^e = exp(e ln cos) is below e^-110, so exactly 0 in
-/// float (the smallest float is e^-103.3): 2 (1 - e^(-110 / e)), rounded up; 2 (the lobe's edge)
-/// for e = 0. Kept for the last exponent asked, per thread.
+/// The chord^2 from which phong_lobe's cos^e = exp(e ln cos) is below exp(-110), so exactly 0
+/// in float: the smallest float is exp(-103.3), and xsimd's exp returns 0 below -88.4, so -110
+/// leaves a margin of 6.7 for the rounding of log1p. That is 2 (1 - exp(-110 / e)), taken as
+/// -2 expm1(-110 / e) (accurate for huge e too: 220 / e) and rounded up; 2 (the lobe's edge)
+/// for e = 0; infinity (never skip) for an infinite e, where it would be 0. Recomputed when the
+/// thread's exponent changes.
 inline float phong_zero_chord2(float e) {
     thread_local float last_e = 0.0f, last = 2.0f;
     if (e != last_e) {
-        const double c = 2.0 * (1.0 - std::exp(-110.0 / static_cast<double>(e)));
-        last = std::min(std::nextafter(static_cast<float>(c), 4.0f), 2.0f);
+        const float c = static_cast<float>(-2.0 * std::expm1(-110.0 / static_cast<double>(e)));
+        last = c >= std::numeric_limits<float>::min() ? std::min(std::nextafter(c, 4.0f), 2.0f)
+                                                      : std::numeric_limits<float>::infinity();
         last_e = e;
     }
     return last;

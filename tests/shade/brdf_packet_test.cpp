@@ -11,10 +11,12 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "core/ray_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
 #include "support/widths.h"
@@ -242,45 +244,70 @@ TYPED_TEST(BrdfPacket, LobesMatchScalar) {
 
 /// phong_lobe skips exp and log1p for a packet whose every lane lies past phong_zero_chord2:
 /// there the lobe is exactly 0 by the formula itself (scalar and packet), the threshold sits at
-/// e ln cos = -110 (so it skips all it may), and a packet with one lane inside still computes it.
+/// e ln cos = -110 (a margin of 6 over the smallest float), and a packet with lanes inside still
+/// computes them, every lane as the scalar lobe does.
 TYPED_TEST(BrdfPacket, PhongLobeIsExactlyZeroWhereItsPacketsSkipIt) {
     constexpr int W = TypeParam::value;
     const vec3 axis(0.0f, 0.0f, 1.0f);
-    // a unit direction whose chord to the axis has length^2 c: cos = 1 - c / 2
+    const Vec3<W> ax = make_vec3<W>(0.0f, 0.0f, 1.0f);
+    // a direction whose chord to the axis has length^2 about c: unit with cos = 1 - c / 2, or
+    // for tiny c (huge e, where 1 - c / 2 rounds to 1) the axis plus a side step of sqrt(c)
     auto at_chord2 = [&](float c) {
+        if (c < 1e-3f) return vec3(std::sqrt(c), 0.0f, 1.0f);
         const float cos_t = 1.0f - 0.5f * c;
         return vec3(std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t)), 0.0f, cos_t);
     };
-    for (float e : {1.0f, 5.0f, 50.0f, 1000.0f, 1e6f}) {
+    auto chord2 = [&](vec3 w) { return glm::dot(w - axis, w - axis); };
+    // e = 7 and 10: the threshold just under 2; 1e7: the scene loader's largest; 1e20: huge
+    for (float e : {1.0f, 7.0f, 10.0f, 50.0f, 1000.0f, 1e6f, 1e7f, 1e20f}) {
         SCOPED_TRACE("e = " + std::to_string(e));
         const float c = phong_zero_chord2(e);
         ASSERT_GT(c, 0.0f);
         ASSERT_LE(c, 2.0f);
+        // at c the lobe is at most exp(-110); two floats below c it is above it (unless c is 2)
+        auto exponent_at = [&](float x) { return double(e) * std::log1p(-0.5 * double(x)); };
+        EXPECT_LE(exponent_at(c), -110.0 + 1e-9);
         if (c < 2.0f) {
-            EXPECT_NEAR(double(e) * std::log1p(-0.5 * double(c)), -110.0, 0.01);
+            EXPECT_GT(exponent_at(std::nextafter(std::nextafter(c, 0.0f), 0.0f)), -110.0);
         }
-        // every lane at or past c: 0 from the scalar formula and from the packet
+        // lanes from the first direction whose computed chord^2 reaches c up to the lobe's edge:
+        // 0 from the scalar formula, and from the packet (which skips)
+        vec3 first = at_chord2(c);
+        for (float k = c; chord2(first) < c && k < 2.0f;) {
+            k *= 1.0f + 1e-7f;
+            first = at_chord2(k);
+        }
         alignas(64) float x[W], y[W], z[W];
         for (int k = 0; k < W; ++k) {
             const float ck = c + (2.0f - c) * static_cast<float>(k) / static_cast<float>(W);
-            const vec3 w = at_chord2(ck);
+            const vec3 w = k == 0 ? first : at_chord2(ck);
             x[k] = w.x, y[k] = w.y, z[k] = w.z;
-            const vec3 d = w - axis;
-            if (glm::dot(d, d) >= c) {
-                EXPECT_EQ(phong_lobe(axis, w, e), 0.0f) << "chord^2 " << glm::dot(d, d);
+            if (chord2(w) >= c) {
+                EXPECT_EQ(phong_lobe(axis, w, e), 0.0f) << "chord^2 " << chord2(w);
             }
         }
-        const Vec3<W> ax = make_vec3<W>(0.0f, 0.0f, 1.0f);
+        EXPECT_GE(chord2(first), c);
         Vec3<W> ws = load_vec3<W>(x, y, z);
         for (int k = 0; k < W; ++k)
             EXPECT_EQ(get(phong_lobe(ax, ws, e), k), phong_lobe(axis, vec3(x[k], y[k], z[k]), e));
-        // one lane well inside the lobe: the packet computes, and agrees with the scalar lobe
+        // lanes inside the lobe (lane 0 well inside, the last one at the mirror direction itself)
+        // and, at W > 1, one NaN lane: the packet computes, every lane as the scalar lobe
         const vec3 inside = at_chord2(0.25f * c);
         set(ws.x, 0, inside.x), set(ws.y, 0, inside.y), set(ws.z, 0, inside.z);
-        const float want = phong_lobe(axis, inside, e);
-        const float got = get(phong_lobe(ax, ws, e), 0);
-        EXPECT_GT(want, 0.0f);
-        EXPECT_NEAR(got, want, 1e-5f * want);
+        if constexpr (W > 1) {
+            set(ws.x, W - 1, 0.0f), set(ws.y, W - 1, 0.0f), set(ws.z, W - 1, 1.0f);
+            set(ws.x, 1, std::numeric_limits<float>::quiet_NaN());
+        }
+        const vfloat<W> got = phong_lobe(ax, ws, e);
+        EXPECT_GT(get(got, 0), 0.0f);
+        for (int k = 0; k < W; ++k) {
+            const float want = phong_lobe(axis, get_vec3(ws, k), e);
+            if (std::isnan(want)) {
+                EXPECT_TRUE(std::isnan(get(got, k))) << "lane " << k;
+            } else {
+                EXPECT_NEAR(get(got, k), want, 1e-5f * want) << "lane " << k;
+            }
+        }
     }
 }
 
