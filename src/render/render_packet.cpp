@@ -2,7 +2,6 @@
 #include "render/render_packet.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cassert>
 #include <chrono>
 #include <cstring>
@@ -379,8 +378,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     // a tile is a block: at most max_block_rays pixels, rows a multiple of W wide
     const int tile_size = std::min(params.tile_size, 16);
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, tile_size);
-    std::atomic<uint64_t> shadow_rays{0}, reflection_rays{0}, refraction_rays{0}, glossy_rays{0},
-        nan_samples{0}, inf_samples{0};
+    TileCounts tile_counts;
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
     // a camera packet's lanes: column lane % packet_cols, row lane / packet_cols
     alignas(64) int32_t cols[W], rows[W];
@@ -526,21 +524,17 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
             else
                 std::memcpy(row, from, static_cast<size_t>(tile_w) * sizeof(vec3));
         }
-        shadow_rays += counts.shadow_rays;
-        reflection_rays += counts.reflection_rays;
-        refraction_rays += counts.refraction_rays;
-        glossy_rays += counts.glossy_rays;
-        nan_samples += nans;
-        inf_samples += infs;
+        RenderStats& sums = tile_counts.local();
+        sums.shadow_rays += counts.shadow_rays;
+        sums.reflection_rays += counts.reflection_rays;
+        sums.refraction_rays += counts.refraction_rays;
+        sums.glossy_rays += counts.glossy_rays;
+        sums.nan_samples += nans;
+        sums.inf_samples += infs;
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
-    result.stats.shadow_rays = shadow_rays;
-    result.stats.reflection_rays = reflection_rays;
-    result.stats.refraction_rays = refraction_rays;
-    result.stats.glossy_rays = glossy_rays;
-    result.stats.nan_samples = nan_samples;
-    result.stats.inf_samples = inf_samples;
+    for (const RenderStats& sums : tile_counts) result.stats.add_counts(sums);
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

@@ -37,6 +37,12 @@ struct RenderStats {
     uint64_t inf_samples = 0;  ///< samples with an infinite channel (and no NaN): likewise
     double seconds = 0.0;
     uint64_t bad_samples() const { return nan_samples + inf_samples; }
+    /// Adds o's ray and sample counts (not its time).
+    void add_counts(const RenderStats& o) {
+        primary_rays += o.primary_rays, shadow_rays += o.shadow_rays;
+        reflection_rays += o.reflection_rays, refraction_rays += o.refraction_rays;
+        glossy_rays += o.glossy_rays, nan_samples += o.nan_samples, inf_samples += o.inf_samples;
+    }
     uint64_t total_rays() const {
         return primary_rays + shadow_rays + reflection_rays + refraction_rays + glossy_rays;
     }

@@ -1,7 +1,6 @@
 // render: the scalar reference renderer. Mirrored by render_packet.cpp.
 #include "render/render_scalar.h"
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -50,8 +49,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     result.film = make_film_for_overwrite(cam.width, cam.height);
     const int spp = params.spp > 0 ? params.spp : 1;
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size);
-    std::atomic<uint64_t> shadow_rays{0}, reflection_rays{0}, refraction_rays{0}, glossy_rays{0},
-        nan_samples{0}, inf_samples{0};
+    TileCounts tile_counts;
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
@@ -94,21 +92,17 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
                 result.film.at(x, y) = pixel_mean(sum);
             }
         }
-        shadow_rays += counts.shadow_rays;
-        reflection_rays += counts.reflection_rays;
-        refraction_rays += counts.refraction_rays;
-        glossy_rays += counts.glossy_rays;
-        nan_samples += nans;
-        inf_samples += infs;
+        RenderStats& sums = tile_counts.local();
+        sums.shadow_rays += counts.shadow_rays;
+        sums.reflection_rays += counts.reflection_rays;
+        sums.refraction_rays += counts.refraction_rays;
+        sums.glossy_rays += counts.glossy_rays;
+        sums.nan_samples += nans;
+        sums.inf_samples += infs;
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
-    result.stats.shadow_rays = shadow_rays;
-    result.stats.reflection_rays = reflection_rays;
-    result.stats.refraction_rays = refraction_rays;
-    result.stats.glossy_rays = glossy_rays;
-    result.stats.nan_samples = nan_samples;
-    result.stats.inf_samples = inf_samples;
+    for (const RenderStats& sums : tile_counts) result.stats.add_counts(sums);
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

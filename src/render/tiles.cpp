@@ -32,8 +32,8 @@ bool cancel_requested() { return cancel_flag.load(std::memory_order_relaxed); }
 void enable_flush_to_zero() { _mm_setcsr(_mm_getcsr() | 0x8040u); }  // FTZ | DAZ
 
 void Progress::step() {
+    if (!enabled || total == 0) return;  // no atomic per tile when nothing is shown
     const size_t n = done.fetch_add(1) + 1;
-    if (!enabled || total == 0) return;
     const int percent = static_cast<int>(100 * n / total);
     int old = shown.load();
     if (percent > old && shown.compare_exchange_strong(old, percent))

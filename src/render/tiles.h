@@ -2,6 +2,7 @@
 #pragma once
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -9,6 +10,8 @@
 #include <cstdio>
 #include <stdexcept>
 #include <vector>
+
+#include "render/render_params.h"
 
 namespace raylane {
 
@@ -45,6 +48,11 @@ struct Cancelled : std::runtime_error {
 /// line calls it from its SIGINT / SIGTERM handler.
 void request_cancel();
 bool cancel_requested();
+
+/// A render's counts, one copy per thread (`local()`), summed when the tiles are done: a tile adds
+/// its counts without an atomic, whose locked add would wait for the tile's film stores to leave
+/// the core before the next tile could start.
+using TileCounts = tbb::enumerable_thread_specific<RenderStats>;
 
 /// Runs body(tile) for every tile on `threads` threads (0 = all). Each tile runs on one thread;
 /// the result must not depend on which thread or in what order. Throws Cancelled if a cancel
