@@ -510,11 +510,20 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
         alignas(64) vec3 tile_rgb[max_block_rays];
         for (int p = 0; p < count; ++p) {
             const Vec3<W> mean = pixel_mean<W>(sum[p]);
-            alignas(64) float r[W], g[W], bl[W];
-            alignas(64) int32_t at[W];
-            store_aligned(r, mean.x), store_aligned(g, mean.y), store_aligned(bl, mean.z);
-            store_aligned(at, slot[p]);
-            for_each_active(active[p], [&](int i) { tile_rgb[at[i]] = vec3(r[i], g[i], bl[i]); });
+            alignas(64) float rgb[3 * W];
+            store_interleaved3(rgb, mean.x, mean.y, mean.z);
+            if (all(active[p])) {  // inside the tile: a row of the packet is a run of the buffer
+                const int at = get(slot[p], 0);
+                for (int r = 0; r < packet_rows<W>; ++r)
+                    std::memcpy(&tile_rgb[at + r * tile_w], &rgb[3 * r * packet_cols<W>],
+                                3 * packet_cols<W> * sizeof(float));
+            } else {
+                alignas(64) int32_t at[W];
+                store_aligned(at, slot[p]);
+                for_each_active(active[p], [&](int i) {
+                    tile_rgb[at[i]] = vec3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
+                });
+            }
         }
         for (int y = tile.y0; y < tile.y1; ++y) {
             vec3* row = &result.film.pixels[static_cast<size_t>(y) * cam.width + tile.x0];
