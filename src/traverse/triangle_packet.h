@@ -38,10 +38,11 @@ inline vfloat<W> pick(const vmask<W>& k0, const vmask<W>& k1, vec3 p) {
     return select(k0, vfloat<W>(p.x), select(k1, vfloat<W>(p.y), vfloat<W>(p.z)));
 }
 
-/// Lane-wise make_watertight_ray: the same permutation rule and the same divisions.
+/// Lane-wise make_watertight_ray: the same permutation rule and the same divisions. Written
+/// into `wr` (an array element is filled in place rather than copied from a temporary).
 template <int W>
-inline WatertightPacket<W> make_watertight_ray(const RayPacket<W>& rays, vmask<W> active) {
-    WatertightPacket<W> wr;
+inline void make_watertight_ray(const RayPacket<W>& rays, vmask<W> active,
+                                WatertightPacket<W>& wr) {
     const vfloat<W> adx = abs(rays.dir.x), ady = abs(rays.dir.y), adz = abs(rays.dir.z);
     // kz: x if |x| >= |y| and |x| >= |z|; else y if |y| >= |z|; else z (the scalar rule)
     const vmask<W> x_ge_y = adx >= ady;
@@ -76,11 +77,17 @@ inline WatertightPacket<W> make_watertight_ray(const RayPacket<W>& rays, vmask<W
     const uint32_t bz0 = bits(kz0) & act, bz1 = bits(kz1) & act;
     auto same = [act](uint32_t b) { return b == 0 || b == act; };
     wr.uniform = same(bx0) && same(bx1) && same(by0) && same(by1) && same(bz0) && same(bz1);
+    wr.kx = 0, wr.ky = 1, wr.kz = 2;
     if (wr.uniform && act != 0) {
         wr.kx = bx0 ? 0 : (bx1 ? 1 : 2);
         wr.ky = by0 ? 0 : (by1 ? 1 : 2);
         wr.kz = bz0 ? 0 : (bz1 ? 1 : 2);
     }
+}
+template <int W>
+inline WatertightPacket<W> make_watertight_ray(const RayPacket<W>& rays, vmask<W> active) {
+    WatertightPacket<W> wr;
+    make_watertight_ray(rays, active, wr);
     return wr;
 }
 
