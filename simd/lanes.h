@@ -246,59 +246,6 @@ inline int compress_store(int32_t* out, const V& v, const M& m) {
     return n;
 }
 
-/// The lanes of x, y and z as W triples x0 y0 z0 x1 y1 z1 ... at out[0 .. 3W): SoA to AoS (a
-/// film's pixels). AVX-512 builds each run of 16 floats with a two-source permute of x and y and
-/// a masked permute of z; other widths go through memory.
-inline void store_interleaved3(float* out, float x, float y, float z) {
-    out[0] = x, out[1] = y, out[2] = z;
-}
-namespace simd_detail {
-/// For run k of 16 floats of the interleaved lanes: each element's source lane in x (j) or y
-/// (16 + j) for the x and y elements, in z for the z elements (zmask).
-struct Interleave3 {
-    alignas(64) int32_t xy[3][16] = {};
-    alignas(64) int32_t z[3][16] = {};
-    uint16_t zmask[3] = {};
-};
-constexpr Interleave3 make_interleave3() {
-    Interleave3 t;
-    for (int k = 0; k < 3; ++k) {
-        for (int j = 0; j < 16; ++j) {
-            const int e = 16 * k + j, lane = e / 3, component = e % 3;
-            if (component == 2) {
-                t.z[k][j] = lane;
-                t.zmask[k] = static_cast<uint16_t>(t.zmask[k] | (1u << j));
-            } else {
-                t.xy[k][j] = component == 0 ? lane : 16 + lane;
-            }
-        }
-    }
-    return t;
-}
-inline constexpr Interleave3 interleave3 = make_interleave3();
-}  // namespace simd_detail
-template <class A>
-inline void store_interleaved3(float* out, const PFloat<A>& x, const PFloat<A>& y,
-                               const PFloat<A>& z) {
-    constexpr int w = width_of<PFloat<A>>;
-#if defined(__AVX512F__)
-    if constexpr (w == 16) {
-        const simd_detail::Interleave3& t = simd_detail::interleave3;
-        for (int k = 0; k < 3; ++k) {
-            const __m512 xy = _mm512_permutex2var_ps(x, _mm512_load_si512(t.xy[k]), y);
-            _mm512_storeu_ps(out + 16 * k,
-                             _mm512_mask_permutexvar_ps(xy, static_cast<__mmask16>(t.zmask[k]),
-                                                        _mm512_load_si512(t.z[k]), z));
-        }
-        return;
-    }
-#endif
-    alignas(64) float lanes[3][w];
-    x.store_aligned(lanes[0]), y.store_aligned(lanes[1]), z.store_aligned(lanes[2]);
-    for (int i = 0; i < w; ++i)
-        for (int c = 0; c < 3; ++c) out[3 * i + c] = lanes[c][i];
-}
-
 /// base[index] for the active lanes, 0 for the others; inactive lanes' indices are never read,
 /// so they may hold garbage.
 inline float gather(const float* base, int32_t index, bool m) { return m ? base[index] : 0.0f; }

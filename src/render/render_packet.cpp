@@ -378,7 +378,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     // a tile is a block: at most max_block_rays pixels, rows a multiple of W wide
     const int tile_size = std::min(params.tile_size, 16);
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, tile_size);
-    TileCounts tile_counts;
+    PerThreadStats per_thread;
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
     // a camera packet's lanes: column lane % packet_cols, row lane / packet_cols
     alignas(64) int32_t cols[W], rows[W];
@@ -506,12 +506,13 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
         }
         // the tile's pixels into a buffer in film order (slot[p] holds each lane's index in it),
         // then into the film a row at a time: a few wide stores per row instead of three per
-        // pixel, which spares the store queue the film's cache misses
+        // pixel
+        static_assert(sizeof(vec3) == 3 * sizeof(float));  // runs of floats copied as pixels
         alignas(64) vec3 tile_rgb[max_block_rays];
         for (int p = 0; p < count; ++p) {
             const Vec3<W> mean = pixel_mean<W>(sum[p]);
             alignas(64) float rgb[3 * W];
-            store_interleaved3(rgb, mean.x, mean.y, mean.z);
+            store_vec3_aos(rgb, mean);
             if (all(active[p])) {  // inside the tile: a row of the packet is a run of the buffer
                 const int at = get(slot[p], 0);
                 for (int r = 0; r < packet_rows<W>; ++r)
@@ -533,7 +534,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
             else
                 std::memcpy(row, from, static_cast<size_t>(tile_w) * sizeof(vec3));
         }
-        RenderStats& sums = tile_counts.local();
+        RenderStats& sums = per_thread.local();
         sums.shadow_rays += counts.shadow_rays;
         sums.reflection_rays += counts.reflection_rays;
         sums.refraction_rays += counts.refraction_rays;
@@ -543,7 +544,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
-    for (const RenderStats& sums : tile_counts) result.stats.add_counts(sums);
+    for (const RenderStats& sums : per_thread) result.stats.add_counts(sums);
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

@@ -49,7 +49,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     result.film = make_film_for_overwrite(cam.width, cam.height);
     const int spp = params.spp > 0 ? params.spp : 1;
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size);
-    TileCounts tile_counts;
+    PerThreadStats per_thread;
     Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
@@ -92,7 +92,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
                 result.film.at(x, y) = pixel_mean(sum);
             }
         }
-        RenderStats& sums = tile_counts.local();
+        RenderStats& sums = per_thread.local();
         sums.shadow_rays += counts.shadow_rays;
         sums.reflection_rays += counts.reflection_rays;
         sums.refraction_rays += counts.refraction_rays;
@@ -102,7 +102,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
-    for (const RenderStats& sums : tile_counts) result.stats.add_counts(sums);
+    for (const RenderStats& sums : per_thread) result.stats.add_counts(sums);
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

@@ -50,9 +50,8 @@ void request_cancel();
 bool cancel_requested();
 
 /// A render's counts, one copy per thread (`local()`), summed when the tiles are done: a tile adds
-/// its counts without an atomic, whose locked add would wait for the tile's film stores to leave
-/// the core before the next tile could start.
-using TileCounts = tbb::enumerable_thread_specific<RenderStats>;
+/// its counts without atomics (a locked add also waits for the tile's earlier stores).
+using PerThreadStats = tbb::enumerable_thread_specific<RenderStats>;
 
 /// Runs body(tile) for every tile on `threads` threads (0 = all). Each tile runs on one thread;
 /// the result must not depend on which thread or in what order. Throws Cancelled if a cancel

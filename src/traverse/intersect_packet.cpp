@@ -900,7 +900,7 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
             const MeshAccel& mesh = accel.meshes[object.shape];
             if (mesh.bvh.nodes.empty()) continue;
             for (int p = f; p <= l; ++p) {
-                if (!wr_ready[p]) make_watertight_ray(rays[p], active[p], wr[p]);
+                if (!wr_ready[p]) fill_watertight_ray(wr[p], rays[p], active[p]);
                 wr_ready[p] = true;
             }
             traverse_block<W>(
@@ -977,7 +977,7 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
             const MeshAccel& mesh = accel.meshes[object.shape];
             if (mesh.bvh.nodes.empty()) continue;
             for (int p = f; p <= l; ++p) {
-                if (!wr_ready[p]) make_watertight_ray(rays[p], active[p], wr[p]);
+                if (!wr_ready[p]) fill_watertight_ray(wr[p], rays[p], active[p]);
                 wr_ready[p] = true;
             }
             traverse_block<W>(

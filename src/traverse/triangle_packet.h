@@ -38,11 +38,12 @@ inline vfloat<W> pick(const vmask<W>& k0, const vmask<W>& k1, vec3 p) {
     return select(k0, vfloat<W>(p.x), select(k1, vfloat<W>(p.y), vfloat<W>(p.z)));
 }
 
-/// Lane-wise make_watertight_ray: the same permutation rule and the same divisions. Written
-/// into `wr` (an array element is filled in place rather than copied from a temporary).
+/// Lane-wise make_watertight_ray, written into `wr`: the same permutation rule and the same
+/// divisions. (Packet only: a block fills an array element in place instead of copying a
+/// temporary of 832 bytes; the scalar set-up is a few floats.)
 template <int W>
-inline void make_watertight_ray(const RayPacket<W>& rays, vmask<W> active,
-                                WatertightPacket<W>& wr) {
+inline void fill_watertight_ray(WatertightPacket<W>& wr, const RayPacket<W>& rays,
+                                vmask<W> active) {
     const vfloat<W> adx = abs(rays.dir.x), ady = abs(rays.dir.y), adz = abs(rays.dir.z);
     // kz: x if |x| >= |y| and |x| >= |z|; else y if |y| >= |z|; else z (the scalar rule)
     const vmask<W> x_ge_y = adx >= ady;
@@ -87,7 +88,7 @@ inline void make_watertight_ray(const RayPacket<W>& rays, vmask<W> active,
 template <int W>
 inline WatertightPacket<W> make_watertight_ray(const RayPacket<W>& rays, vmask<W> active) {
     WatertightPacket<W> wr;
-    make_watertight_ray(rays, active, wr);
+    fill_watertight_ray(wr, rays, active);
     return wr;
 }
 

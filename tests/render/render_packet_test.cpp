@@ -125,6 +125,36 @@ TEST(RenderPacket, SameImageForOneAndTwoThreads) {
     }
 }
 
+/// The tile size decides only how pixels are grouped, never their values: 75 x 43 pixels of the
+/// built-in scene (one pass) and the dragon when its model is found, in tiles of 16, 12, 8, 5 and
+/// 4 pixels, so full camera packets sit in tiles narrower than 16 and packets are cut by tile
+/// and image edges; every image is the 16-pixel one bit for bit.
+TEST(RenderPacket, SameImageForEveryTileSize) {
+    for (const char* name : {"builtin", "dragon"}) {
+        Scene scene;
+        try {
+            scene = small(scene_named(name), 75);
+        } catch (const std::exception& e) {
+            EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
+            continue;
+        }
+        scene.camera.height = 43;
+        const Accel accel = build_accel(scene, BuildParams{});
+        RenderParams p;
+        p.spp = 2;
+        p.threads = 2;
+        const RenderResult reference = render_packet(scene, accel, p);
+        for (const int tile_size : {12, 8, 5, 4}) {
+            p.tile_size = tile_size;
+            const RenderResult r = render_packet(scene, accel, p);
+            ASSERT_EQ(r.film.pixels.size(), reference.film.pixels.size());
+            for (size_t i = 0; i < r.film.pixels.size(); ++i)
+                ASSERT_EQ(r.film.pixels[i], reference.film.pixels[i])
+                    << name << ", tiles of " << tile_size << ", pixel " << i;
+        }
+    }
+}
+
 /// `raylane compare` on every scene of scenes/ (at a quarter of the width, to keep the suite
 /// fast): the images agree within the tolerance and no primary hit differs.
 TEST(RenderPacket, EverySceneFileAgreesWithTheScalarPath) {

@@ -251,25 +251,6 @@ TYPED_TEST(LanesTest, MaskedStoreLeavesInactiveLanesUntouched) {
     }
 }
 
-TYPED_TEST(LanesTest, StoreInterleaved3WritesTheLanesAsTriples) {
-    constexpr int W = TypeParam::value;
-    constexpr uint32_t guard = 0xdeadbeefu;
-    std::mt19937 rng(27);
-    for (int r = 0; r < rounds / 10; ++r) {
-        const auto x = tagged_lanes<W>(rng), y = tagged_lanes<W>(rng), z = tagged_lanes<W>(rng);
-        std::array<float, 3 * W + 2> out;
-        out.fill(std::bit_cast<float>(guard));
-        store_interleaved3(out.data() + 1, load<W>(x.data()), load<W>(y.data()), load<W>(z.data()));
-        ASSERT_EQ(bits_of(out[0]), guard);
-        ASSERT_EQ(bits_of(out[3 * W + 1]), guard);
-        for (int l = 0; l < W; ++l) {
-            ASSERT_EQ(bits_of(out[1 + 3 * l]), bits_of(x[l])) << "lane " << l;
-            ASSERT_EQ(bits_of(out[2 + 3 * l]), bits_of(y[l])) << "lane " << l;
-            ASSERT_EQ(bits_of(out[3 + 3 * l]), bits_of(z[l])) << "lane " << l;
-        }
-    }
-}
-
 TYPED_TEST(LanesTest, MaskedGatherNeverReadsInactiveIndices) {
     constexpr int W = TypeParam::value;
     std::mt19937 rng(27);

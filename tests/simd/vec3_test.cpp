@@ -160,5 +160,26 @@ TYPED_TEST(Vec3Test, MinMaxAndSelectWorkPerComponent) {
     }
 }
 
+TYPED_TEST(Vec3Test, StoreAosWritesTheVectorsAsTriples) {
+    constexpr int W = TypeParam::value;
+    constexpr uint32_t guard = 0xdeadbeefu;
+    std::mt19937 rng(31);
+    for (int r = 0; r < rounds; ++r) {
+        SoA<W> s = random_soa<W>(rng);
+        s.x[0] = std::bit_cast<float>(0x7fc01234u);  // a NaN payload and -0.0 kept bit for bit
+        s.z[W - 1] = -0.0f;
+        std::array<float, 3 * W + 2> out;
+        out.fill(std::bit_cast<float>(guard));
+        store_vec3_aos(out.data() + 1, load_soa(s));  // any alignment
+        ASSERT_EQ(bits_of(out[0]), guard);
+        ASSERT_EQ(bits_of(out[3 * W + 1]), guard);
+        for (int l = 0; l < W; ++l) {
+            ASSERT_EQ(bits_of(out[1 + 3 * l]), bits_of(s.x[l])) << "lane " << l;
+            ASSERT_EQ(bits_of(out[2 + 3 * l]), bits_of(s.y[l])) << "lane " << l;
+            ASSERT_EQ(bits_of(out[3 + 3 * l]), bits_of(s.z[l])) << "lane " << l;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace raylane
