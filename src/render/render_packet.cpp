@@ -534,13 +534,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
             else
                 std::memcpy(row, from, static_cast<size_t>(tile_w) * sizeof(vec3));
         }
-        RenderStats& sums = per_thread.local();
-        sums.shadow_rays += counts.shadow_rays;
-        sums.reflection_rays += counts.reflection_rays;
-        sums.refraction_rays += counts.refraction_rays;
-        sums.glossy_rays += counts.glossy_rays;
-        sums.nan_samples += nans;
-        sums.inf_samples += infs;
+        per_thread.local().add_tile(counts, nans, infs);
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "image/film.h"
+#include "shade/shade_scalar.h"
 
 namespace raylane {
 
@@ -37,6 +38,12 @@ struct RenderStats {
     uint64_t inf_samples = 0;  ///< samples with an infinite channel (and no NaN): likewise
     double seconds = 0.0;
     uint64_t bad_samples() const { return nan_samples + inf_samples; }
+    /// Adds a tile's counts: the rays its shading spawned and its dropped samples.
+    void add_tile(const ShadeCounts& shading, uint64_t nans, uint64_t infs) {
+        shadow_rays += shading.shadow_rays, reflection_rays += shading.reflection_rays;
+        refraction_rays += shading.refraction_rays, glossy_rays += shading.glossy_rays;
+        nan_samples += nans, inf_samples += infs;
+    }
     /// Adds o's ray and sample counts (not its time).
     void add_counts(const RenderStats& o) {
         primary_rays += o.primary_rays, shadow_rays += o.shadow_rays;

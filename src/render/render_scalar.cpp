@@ -92,13 +92,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
                 result.film.at(x, y) = pixel_mean(sum);
             }
         }
-        RenderStats& sums = per_thread.local();
-        sums.shadow_rays += counts.shadow_rays;
-        sums.reflection_rays += counts.reflection_rays;
-        sums.refraction_rays += counts.refraction_rays;
-        sums.glossy_rays += counts.glossy_rays;
-        sums.nan_samples += nans;
-        sums.inf_samples += infs;
+        per_thread.local().add_tile(counts, nans, infs);
     });
 
     result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
