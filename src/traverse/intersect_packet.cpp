@@ -670,11 +670,18 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
     vfloat<W> t_min = inf, org_lo[3] = {inf, inf, inf}, org_hi[3] = {neg_inf, neg_inf, neg_inf};
     vfloat<W> dir_lo[3] = {inf, inf, inf}, dir_hi[3] = {neg_inf, neg_inf, neg_inf};
     BlockBounds b;
-    bool seen = false;
-    for (int p = 0; p < count; ++p) {
-        if (none(active[p])) continue;
+    // the block's direction signs: its first active lane's
+    int first = 0;
+    while (first < count && none(active[first])) ++first;
+    if (first < count) {
+        const int lane = first_active(active[first]);
+        const vfloat<W>* dir[3] = {&rays[first].dir.x, &rays[first].dir.y, &rays[first].dir.z};
+        for (int k = 0; k < 3; ++k) b.dir_neg[k] = 1.0f / get(*dir[k], lane) < 0.0f;
+    }
+    for (int p = first; p < count; ++p) {
         const vmask<W> m = active[p];
-        // min(x, acc) is x < acc ? x : acc (simd/math.h): a NaN lane keeps acc
+        // min(x, acc) is x < acc ? x : acc (simd/math.h): a NaN lane keeps acc; an inactive
+        // packet changes nothing
         auto lo = [&](vfloat<W>& acc, const vfloat<W>& x) { acc = select(m, min(x, acc), acc); };
         auto hi = [&](vfloat<W>& acc, const vfloat<W>& x) { acc = select(m, max(x, acc), acc); };
         lo(t_min, rays[p].t_min);
@@ -685,11 +692,6 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
             hi(org_hi[k], *org[k]);
             lo(dir_lo[k], *dir[k]);
             hi(dir_hi[k], *dir[k]);
-        }
-        if (!seen) {
-            const int lane = first_active(m);
-            for (int k = 0; k < 3; ++k) b.dir_neg[k] = 1.0f / get(*dir[k], lane) < 0.0f;
-            seen = true;
         }
     }
     b.t_min = hmin(t_min);
