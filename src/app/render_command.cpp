@@ -55,8 +55,9 @@ int run_render(const RenderOptions& o) {
     const std::string output = o.output.empty() ? default_output(o) : o.output;
     const bool colour = params.aov == Aov::color;
     const bool report_look = colour && scene.tonemap == Tonemap::report;
-    const Film film =
-        report_look ? hue_preserving_clamp(result.film) : visualise_aov(result.film, params.aov);
+    // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages)
+    const Film film = report_look ? hue_preserving_clamp(std::move(result.film))
+                                  : visualise_aov(std::move(result.film), params.aov);
     write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
 
     const RenderStats& s = result.stats;

@@ -1,7 +1,11 @@
 // image: film encodings and writers.
 #include "image/film.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -45,6 +49,50 @@ uint8_t encode_channel(float linear, Encoding encoding) {
     return static_cast<uint8_t>(x * 255.0f + 0.5f);  // x in [0, 1]: round half up
 }
 
+SrgbTable::SrgbTable() {
+    // step[k], 1 <= k <= 255: by bisection over the bit patterns of [0, 1], which are ordered as
+    // the floats are; encode_channel is non-decreasing (tests/image/film_test.cpp checks it)
+    step[0] = 0.0f;
+    step[256] = std::numeric_limits<float>::infinity();
+    for (int k = 1; k <= 255; ++k) {
+        uint32_t lo = 0, hi = one_bits;  // encode(lo) < k <= encode(hi)
+        while (hi - lo > 1) {
+            const uint32_t mid = lo + (hi - lo) / 2;
+            (encode_channel(std::bit_cast<float>(mid), Encoding::srgb) >= k ? hi : lo) = mid;
+        }
+        step[k] = std::bit_cast<float>(hi);
+    }
+    int k = 0;
+    for (uint32_t b = 0; b < buckets; ++b) {
+        const float first = std::bit_cast<float>(b << shift);
+        while (k < 255 && step[k + 1] <= first) ++k;
+        base[b] = static_cast<uint8_t>(k);
+    }
+}
+
+const SrgbTable& srgb_table() {
+    static const SrgbTable table;
+    return table;
+}
+
+std::vector<uint8_t> encode_film(const Film& film, Encoding encoding) {
+    std::vector<uint8_t> bytes(film.pixels.size() * 3);
+    const SrgbTable& srgb = srgb_table();
+    tbb::parallel_for(tbb::blocked_range<int>(0, film.height),
+                      [&](const tbb::blocked_range<int>& r) {
+                          for (int y = r.begin(); y < r.end(); ++y) {
+                              const vec3* in = &film.at(0, y);
+                              uint8_t* out = bytes.data() + size_t(y) * size_t(film.width) * 3;
+                              for (int x = 0; x < film.width; ++x)
+                                  for (int c = 0; c < 3; ++c)
+                                      out[3 * x + c] = encoding == Encoding::srgb
+                                                           ? srgb(in[x][c])
+                                                           : encode_channel(in[x][c], encoding);
+                          }
+                      });
+    return bytes;
+}
+
 namespace {
 
 /// Renames `tmp` over `path`, or removes it and throws.
@@ -62,9 +110,7 @@ std::string temp_name(const std::string& path) { return path + ".partial"; }
 }  // namespace
 
 void write_png(const std::string& path, const Film& film, Encoding encoding) {
-    std::vector<uint8_t> bytes(film.pixels.size() * 3);
-    for (size_t i = 0; i < film.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) bytes[3 * i + c] = encode_channel(film.pixels[i][c], encoding);
+    const std::vector<uint8_t> bytes = encode_film(film, encoding);
     const std::string tmp = temp_name(path);
     stbi_write_png_compression_level = 4;  // stb's default (8) costs more than the render
     if (!stbi_write_png(tmp.c_str(), film.width, film.height, 3, bytes.data(), film.width * 3))
@@ -115,14 +161,13 @@ vec3 false_colour(float x) {
     return stops[i] * (1.0f - f) + stops[i + 1] * f;
 }
 
-Film hue_preserving_clamp(const Film& film) {
-    Film out = film;
-    for (vec3& c : out.pixels) {
+Film hue_preserving_clamp(Film film) {
+    for (vec3& c : film.pixels) {
         for (int k = 0; k < 3; ++k) c[k] = c[k] > 0.0f ? c[k] : 0.0f;  // NaN too
         const float m = std::max(c.x, std::max(c.y, c.z));
         if (m > 1.0f) c /= m;
     }
-    return out;
+    return film;
 }
 
 }  // namespace raylane

@@ -1,6 +1,9 @@
 // image: the film (linear float RGB), its encodings, and the PNG / PFM writers.
 #pragma once
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -54,6 +57,34 @@ Film make_film_for_overwrite(int width, int height);
 /// 8-bit value of a linear channel: clamped to [0, 1], optionally sRGB-encoded, rounded.
 uint8_t encode_channel(float linear, Encoding encoding);
 
+/// encode_channel(x, Encoding::srgb) for every float x, without its powf: the floats of [0, 1]
+/// in buckets of 2^15 consecutive bit patterns (under 0.4 % of their value wide, so less than
+/// half a step of the 8-bit curve: at most one step falls inside a bucket), the byte of each
+/// bucket's first float, and the smallest float of each byte. 33 KB, built once by bisection
+/// over encode_channel itself.
+struct SrgbTable {
+    static constexpr int shift = 15;
+    static constexpr uint32_t one_bits = 0x3f800000u;  ///< the bits of 1.0f
+    static constexpr uint32_t buckets = (one_bits >> shift) + 1;
+    float step[257];        ///< step[k]: the smallest float encoded as k or more; step[256] = inf
+    uint8_t base[buckets];  ///< the byte of the bucket's first float
+    SrgbTable();
+    uint8_t operator()(float linear) const {
+        // clamped as encode_channel clamps, with -0 and NaN to +0 (their bits index no bucket)
+        const float x =
+            std::isfinite(linear) ? std::min(linear > 0.0f ? linear : 0.0f, 1.0f) : 0.0f;
+        const uint8_t k = base[std::bit_cast<uint32_t>(x) >> shift];
+        return static_cast<uint8_t>(k + (x >= step[k + 1]));
+    }
+};
+
+/// The table, built on first use.
+const SrgbTable& srgb_table();
+
+/// The film's 8-bit RGB bytes, row by row (encode_channel on every channel; the rows in
+/// parallel).
+std::vector<uint8_t> encode_film(const Film& film, Encoding encoding);
+
 /// Writes an 8-bit RGB PNG (stb_image_write). Written to a temporary file and renamed, so an
 /// interrupted write never leaves a half image under `path`. Throws std::runtime_error.
 void write_png(const std::string& path, const Film& film, Encoding encoding);
@@ -66,7 +97,8 @@ void write_image(const std::string& path, const Film& film, Encoding encoding);
 
 /// The report's tone mapping (report-scenes.md 1.3): a pixel whose largest channel exceeds 1
 /// is divided by it (hue kept); negative and NaN channels become 0. Write it linear (no gamma).
-Film hue_preserving_clamp(const Film& film);
+/// Takes the film by value: pass an rvalue to map it in place.
+Film hue_preserving_clamp(Film film);
 
 /// False colour for a cost in [0, 1]: dark blue, through green and yellow, to white.
 vec3 false_colour(float x);

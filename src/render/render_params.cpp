@@ -30,12 +30,12 @@ const char* aov_name(Aov aov) {
     return "?";
 }
 
-Film visualise_aov(const Film& raw, Aov aov) {
-    Film out = raw;
+Film visualise_aov(Film film, Aov aov) {
+    if (aov == Aov::color) return film;
     float max_value = 0.0f;
-    for (const vec3& p : raw.pixels)
+    for (const vec3& p : film.pixels)
         if (std::isfinite(p.x)) max_value = std::max(max_value, p.x);
-    for (vec3& p : out.pixels) {
+    for (vec3& p : film.pixels) {
         switch (aov) {
             case Aov::color:
                 break;
@@ -50,7 +50,7 @@ Film visualise_aov(const Film& raw, Aov aov) {
                 break;
         }
     }
-    return out;
+    return film;
 }
 
 }  // namespace raylane

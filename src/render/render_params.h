@@ -61,7 +61,8 @@ struct RenderResult {
 };
 
 /// Maps a raw AOV film to something to look at: normal * 0.5 + 0.5, depth / max depth,
-/// nodes visited in false colour scaled to the image's maximum. Colour passes through.
-Film visualise_aov(const Film& raw, Aov aov);
+/// nodes visited in false colour scaled to the image's maximum. Colour passes through. Takes the
+/// film by value: pass an rvalue to map it in place.
+Film visualise_aov(Film film, Aov aov);
 
 }  // namespace raylane
