@@ -75,8 +75,8 @@ const SrgbTable& srgb_table() {
     return table;
 }
 
-std::vector<uint8_t> encode_film(const Film& film, Encoding encoding) {
-    std::vector<uint8_t> bytes(film.pixels.size() * 3);
+ImageBytes encode_film(const Film& film, Encoding encoding) {
+    ImageBytes bytes(film.pixels.size() * 3);
     const SrgbTable& srgb = srgb_table();
     tbb::parallel_for(tbb::blocked_range<int>(0, film.height),
                       [&](const tbb::blocked_range<int>& r) {
@@ -110,7 +110,7 @@ std::string temp_name(const std::string& path) { return path + ".partial"; }
 }  // namespace
 
 void write_png(const std::string& path, const Film& film, Encoding encoding) {
-    const std::vector<uint8_t> bytes = encode_film(film, encoding);
+    const ImageBytes bytes = encode_film(film, encoding);
     const std::string tmp = temp_name(path);
     stbi_write_png_compression_level = 4;  // stb's default (8) costs more than the render
     if (!stbi_write_png(tmp.c_str(), film.width, film.height, 3, bytes.data(), film.width * 3))

@@ -5,11 +5,14 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/pages.h"
 #include "core/ray.h"
 
 namespace raylane {
@@ -20,7 +23,8 @@ enum class Encoding : uint8_t { srgb, linear };
 
 /// std::allocator whose value-initialising construct() default-initialises instead: a vector
 /// of floats grown by resize() is left unwritten (a 1080p film is 25 MB that the renderers
-/// overwrite anyway). Everything else is std::allocator's.
+/// overwrite anyway). Blocks of large_block_bytes or more come from map_pages (core/pages.h):
+/// huge pages where the kernel has them. Everything else is std::allocator's.
 template <class T>
 struct OverwriteAllocator : std::allocator<T> {
     template <class U>
@@ -30,6 +34,18 @@ struct OverwriteAllocator : std::allocator<T> {
     OverwriteAllocator() = default;
     template <class U>
     OverwriteAllocator(const OverwriteAllocator<U>&) noexcept {}
+    T* allocate(size_t n) {
+        if (n > std::numeric_limits<size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
+        if (n * sizeof(T) >= large_block_bytes)
+            return reinterpret_cast<T*>(map_pages(n * sizeof(T)));
+        return std::allocator<T>::allocate(n);
+    }
+    void deallocate(T* p, size_t n) noexcept {
+        if (n * sizeof(T) >= large_block_bytes)
+            unmap_pages(reinterpret_cast<std::byte*>(p), n * sizeof(T));
+        else
+            std::allocator<T>::deallocate(p, n);
+    }
     template <class U>
     void construct(U* p) noexcept {
         ::new (static_cast<void*>(p)) U;
@@ -81,9 +97,11 @@ struct SrgbTable {
 /// The table, built on first use.
 const SrgbTable& srgb_table();
 
-/// The film's 8-bit RGB bytes, row by row (encode_channel on every channel; the rows in
-/// parallel).
-std::vector<uint8_t> encode_film(const Film& film, Encoding encoding);
+/// 8-bit RGB bytes of an image, row by row.
+using ImageBytes = std::vector<uint8_t, OverwriteAllocator<uint8_t>>;
+
+/// The film's bytes: encode_channel on every channel (the rows in parallel).
+ImageBytes encode_film(const Film& film, Encoding encoding);
 
 /// Writes an 8-bit RGB PNG (stb_image_write). Written to a temporary file and renamed, so an
 /// interrupted write never leaves a half image under `path`. Throws std::runtime_error.

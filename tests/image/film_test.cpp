@@ -84,7 +84,7 @@ TEST(EncodeFilm, EncodesEveryChannelOfEveryRow) {
             film.at(x, y) = vec3(0.13f * float(x) - 0.1f, 0.21f * float(y), float(x * y) / 20.0f);
     film.at(3, 2) = vec3(std::numeric_limits<float>::quiet_NaN(), -0.0f, 7.0f);
     for (Encoding e : {Encoding::srgb, Encoding::linear}) {
-        const std::vector<uint8_t> bytes = encode_film(film, e);
+        const ImageBytes bytes = encode_film(film, e);
         ASSERT_EQ(bytes.size(), size_t(7 * 5 * 3));
         for (int y = 0; y < film.height; ++y)
             for (int x = 0; x < film.width; ++x)
