@@ -302,7 +302,7 @@ Texture load_texture_from_memory(std::string_view bytes, const std::string& name
 }
 
 Texture load_texture(const std::string& path, ImageEncoding encoding) {
-    // Size and kind first, so neither a huge file nor a pipe is read; read_file reports
+    // Size and kind first, so neither a huge file nor a pipe is read; map_file reports
     // missing files, directories and permissions.
     std::error_code error;
     const auto status = std::filesystem::status(path, error);
@@ -312,7 +312,7 @@ Texture load_texture(const std::string& path, ImageEncoding encoding) {
         if (!error && bytes > static_cast<uintmax_t>(max_image_file_bytes))
             fail(path, "file is " + std::to_string(bytes) + " bytes, over the limit of 2^29");
     }
-    return load_texture_from_memory(read_file(path), path, encoding);
+    return load_texture_from_memory(map_file(path).view(), path, encoding);
 }
 
 Texture make_checker(vec3 a, vec3 b, float checks) {

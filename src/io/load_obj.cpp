@@ -283,6 +283,6 @@ Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_err
     return mesh;
 }
 
-Mesh load_obj(const std::string& path) { return load_obj_from_memory(read_file(path), path); }
+Mesh load_obj(const std::string& path) { return load_obj_from_memory(map_file(path).view(), path); }
 
 }  // namespace raylane

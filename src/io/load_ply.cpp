@@ -765,6 +765,6 @@ Mesh load_ply_from_memory(std::string_view bytes, const std::string& name_for_er
     return mesh;
 }
 
-Mesh load_ply(const std::string& path) { return load_ply_from_memory(read_file(path), path); }
+Mesh load_ply(const std::string& path) { return load_ply_from_memory(map_file(path).view(), path); }
 
 }  // namespace raylane

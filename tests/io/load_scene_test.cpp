@@ -543,6 +543,27 @@ TEST(LoadScene, FitsThenTransformsAndBakesMeshes) {
     expect_vec3_near(a.normals[0], vec3(0, 0, 1), 1e-7f);
 }
 
+// The last object that names a file takes the loaded mesh instead of a copy (load_scene.cpp,
+// read_mesh); a file named two ways is loaded again after its first name's last use.
+TEST(LoadScene, GivesEveryObjectOfAFileTheWholeMesh) {
+    TempDir dir;
+    write_file(dir.path / "quad.obj", quad_obj);
+    write_file(dir.path / "s.json", scene_with(R"("objects": [
+        {"shape": "mesh", "file": "quad.obj"},
+        {"shape": "mesh", "file": "./quad.obj"},
+        {"shape": "mesh", "file": "quad.obj", "transform": {"translate": [1, 0, 0]}},
+        {"shape": "mesh", "file": "./quad.obj"}])"));
+    Scene s = load_scene((dir.path / "s.json").string());
+    ASSERT_EQ(s.meshes.size(), 4u);
+    for (size_t i = 0; i < 4; ++i) {
+        ASSERT_EQ(s.meshes[i].positions.size(), 4u) << i;
+        ASSERT_EQ(s.meshes[i].triangle_count(), 2u) << i;
+        const vec3 shift(i == 2 ? 1.0f : 0.0f, 0.0f, 0.0f);
+        EXPECT_EQ(s.meshes[i].positions[3], vec3(0, 2, -2) + shift) << i;
+        EXPECT_EQ(s.meshes[i].positions[1], vec3(4, 0, 0) + shift) << i;
+    }
+}
+
 TEST(LoadScene, NamesTheJsonPathOfBadFits) {
     TempDir dir;
     write_file(dir.path / "quad.obj", quad_obj);
