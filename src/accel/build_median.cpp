@@ -141,7 +141,7 @@ struct Builder {
     uint8_t* side;              ///< by id, three bytes of padding for 32-bit gathers
     uint32_t* lists[2][3];      ///< lists[b][k]: buffer b of the axis-k list
     uint32_t* prim_ids;
-    std::vector<BvhNode>& nodes;
+    std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes;
     uint32_t max_leaf;
 
     /// Stable partition of in[begin, end) into out: ids whose side stamp differs from `stamp`
@@ -188,7 +188,7 @@ struct Builder {
     /// axis-k list.
     void build(uint32_t begin, uint32_t end, unsigned where, uint8_t depth) {
         const uint32_t node_index = static_cast<uint32_t>(nodes.size());
-        nodes.emplace_back();
+        nodes.push_back(BvhNode{});  // zeroed: count 0 until it is a leaf
         const uint32_t count = end - begin;
         const uint32_t* cur[3] = {lists[where & 1u][0], lists[(where >> 1) & 1u][1],
                                   lists[(where >> 2) & 1u][2]};
@@ -233,7 +233,7 @@ struct Builder {
                 return;
             }
         }
-        nodes.resize(nodes.size() + 2);
+        nodes.resize(nodes.size() + 2, BvhNode{});
         BvhNode* leaves = nodes.data() + node_index + 1;
         leaves[0].index = begin;
         leaves[0].count = static_cast<uint16_t>(mid - begin);
@@ -247,7 +247,7 @@ struct Builder {
 /// them first): a leaf's from grow_leaf(box, first, count) over its primitives in leaf order, a
 /// parent's from its first then its second child, as Aabb::grow would in a recursive build.
 template <class GrowLeaf>
-void finish_nodes(std::vector<BvhNode>& nodes, GrowLeaf&& grow_leaf) {
+void finish_nodes(std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes, GrowLeaf&& grow_leaf) {
     for (size_t i = nodes.size(); i-- > 0;) {
         BvhNode& node = nodes[i];
         Aabb box;

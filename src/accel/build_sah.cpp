@@ -39,14 +39,14 @@ enum class Split { none, leaf, split };
 struct SahBuilder {
     std::span<const Aabb> boxes;
     std::vector<vec3> centroids;
-    std::vector<uint32_t>& ids;
-    std::vector<BvhNode>& nodes;
+    std::vector<uint32_t, OverwriteAllocator<uint32_t>>& ids;
+    std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes;
     uint32_t max_leaf;
 
     /// Emits the node over ids[first, last) and its subtree; returns the node's index.
     uint32_t build(uint32_t first, uint32_t last, int depth) {
         const uint32_t index = static_cast<uint32_t>(nodes.size());
-        nodes.emplace_back();
+        nodes.push_back(BvhNode{});
         Aabb box, cbox;
         for (uint32_t i = first; i < last; ++i) {
             box.grow(boxes[ids[i]]);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/aabb.h"
+#include "core/pages.h"
 #include "scene/scene.h"
 
 namespace raylane {
@@ -25,10 +26,13 @@ struct alignas(32) BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32 && alignof(BvhNode) == 32);
 
-/// A flattened BVH. prim_ids maps leaf order to the caller's primitive index.
+/// A flattened BVH. prim_ids maps leaf order to the caller's primitive index. Its arrays, and a
+/// mesh's vertices in leaf order, are written once by the build: OverwriteAllocator leaves
+/// them unwritten when they are made (nodes are added as BvhNode{}) and gives megabytes
+/// huge pages.
 struct Bvh {
-    std::vector<BvhNode> nodes;
-    std::vector<uint32_t> prim_ids;
+    std::vector<BvhNode, OverwriteAllocator<BvhNode>> nodes;
+    std::vector<uint32_t, OverwriteAllocator<uint32_t>> prim_ids;
 };
 
 /// How the BVHs are built: the report's median split (the default), or binned SAH as a
@@ -58,7 +62,8 @@ struct TriangleVerts {
 
 struct MeshAccel {
     Bvh bvh;
-    std::vector<TriangleVerts> verts;  ///< verts[k] is triangle bvh.prim_ids[k] of the mesh
+    std::vector<TriangleVerts, OverwriteAllocator<TriangleVerts>>
+        verts;  ///< verts[k] is triangle bvh.prim_ids[k] of the mesh
 };
 
 /// Both levels. Objects with infinite extent (planes) are kept out of the top-level BVH and

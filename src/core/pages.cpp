@@ -11,14 +11,13 @@ namespace raylane {
 namespace {
 
 constexpr size_t huge_page = size_t(2) << 20;
-constexpr size_t small_page = size_t(4) << 10;
 
 size_t round_up(size_t bytes, size_t to) { return (bytes + to - 1) & ~(to - 1); }
 
 }  // namespace
 
 std::byte* map_pages(size_t bytes) {
-    const size_t used = round_up(bytes, small_page);
+    const size_t used = round_up(bytes, huge_page);
     // map a huge page more than needed, then return the unaligned head and the tail
     const size_t mapped = used + huge_page;
     void* p = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -34,7 +33,7 @@ std::byte* map_pages(size_t bytes) {
 }
 
 void unmap_pages(std::byte* block, size_t bytes) noexcept {
-    munmap(block, round_up(bytes, small_page));
+    munmap(block, round_up(bytes, huge_page));
 }
 
 }  // namespace raylane

@@ -1,22 +1,62 @@
-// core: large blocks of memory straight from the kernel, for the few arrays of tens of megabytes
-// a render writes once (the film, its 8-bit bytes).
+// core: large blocks of memory straight from the kernel, for the few arrays of megabytes that a
+// render writes once (the film and its 8-bit bytes, a mesh's BVH and vertices in leaf order).
 #pragma once
 
 #include <cstddef>
+#include <limits>
+#include <memory>
+#include <new>
+#include <utility>
 
 namespace raylane {
 
-/// Blocks of at least this many bytes come from map_pages.
-inline constexpr size_t large_block_bytes = size_t(4) << 20;
+/// Blocks of at least this many bytes (one huge page) come from map_pages.
+inline constexpr size_t large_block_bytes = size_t(2) << 20;
 
-/// A zero-filled block of `bytes`, aligned to 2 MiB and advised as transparent huge pages, so
-/// that its first touch costs one page fault per 2 MiB instead of one per 4 KiB: on this VM a
-/// 25 MB film written by two threads takes 26–29 ms of page faults that way against 42–60 ms
-/// (docs/performance.md, "The whole command"). Where the kernel gives no huge pages it is an
-/// ordinary mapping. Throws std::bad_alloc.
+/// A zero-filled block of `bytes` rounded up to whole huge pages (2 MiB), aligned to one and
+/// advised as transparent huge pages, so that its first touch costs one page fault per 2 MiB
+/// instead of one per 4 KiB: on this VM a 25 MB film written by two threads takes 26–29 ms of
+/// page faults that way against 42–60 ms (docs/performance.md, "The whole command"). Where the
+/// kernel gives no huge pages it is an ordinary mapping. Throws std::bad_alloc.
 std::byte* map_pages(size_t bytes);
 
 /// Returns a block of map_pages(bytes) to the kernel.
 void unmap_pages(std::byte* block, size_t bytes) noexcept;
+
+/// std::allocator for the large arrays that their makers overwrite: its value-initialising
+/// construct() default-initialises instead, so a vector of floats grown by resize() is left
+/// unwritten (a 1080p film is 25 MB that the renderers overwrite anyway), and blocks of
+/// large_block_bytes or more come from map_pages (huge pages where the kernel has them).
+/// Everything else is std::allocator's.
+template <class T>
+struct OverwriteAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = OverwriteAllocator<U>;
+    };
+    OverwriteAllocator() = default;
+    template <class U>
+    OverwriteAllocator(const OverwriteAllocator<U>&) noexcept {}
+    T* allocate(size_t n) {
+        if (n > std::numeric_limits<size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
+        if (n * sizeof(T) >= large_block_bytes)
+            return reinterpret_cast<T*>(map_pages(n * sizeof(T)));
+        return std::allocator<T>::allocate(n);
+    }
+    void deallocate(T* p, size_t n) noexcept {
+        if (n * sizeof(T) >= large_block_bytes)
+            unmap_pages(reinterpret_cast<std::byte*>(p), n * sizeof(T));
+        else
+            std::allocator<T>::deallocate(p, n);
+    }
+    template <class U>
+    void construct(U* p) noexcept {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
 
 }  // namespace raylane

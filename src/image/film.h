@@ -21,41 +21,6 @@ namespace raylane {
 /// or linear (AOVs, and the report's look: no gamma).
 enum class Encoding : uint8_t { srgb, linear };
 
-/// std::allocator whose value-initialising construct() default-initialises instead: a vector
-/// of floats grown by resize() is left unwritten (a 1080p film is 25 MB that the renderers
-/// overwrite anyway). Blocks of large_block_bytes or more come from map_pages (core/pages.h):
-/// huge pages where the kernel has them. Everything else is std::allocator's.
-template <class T>
-struct OverwriteAllocator : std::allocator<T> {
-    template <class U>
-    struct rebind {
-        using other = OverwriteAllocator<U>;
-    };
-    OverwriteAllocator() = default;
-    template <class U>
-    OverwriteAllocator(const OverwriteAllocator<U>&) noexcept {}
-    T* allocate(size_t n) {
-        if (n > std::numeric_limits<size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
-        if (n * sizeof(T) >= large_block_bytes)
-            return reinterpret_cast<T*>(map_pages(n * sizeof(T)));
-        return std::allocator<T>::allocate(n);
-    }
-    void deallocate(T* p, size_t n) noexcept {
-        if (n * sizeof(T) >= large_block_bytes)
-            unmap_pages(reinterpret_cast<std::byte*>(p), n * sizeof(T));
-        else
-            std::allocator<T>::deallocate(p, n);
-    }
-    template <class U>
-    void construct(U* p) noexcept {
-        ::new (static_cast<void*>(p)) U;
-    }
-    template <class U, class... Args>
-    void construct(U* p, Args&&... args) {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
-};
-
 struct Film {
     int width = 0, height = 0;
     std::vector<vec3, OverwriteAllocator<vec3>> pixels;  ///< row-major, row 0 at the top, linear

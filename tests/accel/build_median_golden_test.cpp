@@ -191,7 +191,8 @@ TEST(BuildMedianGolden, NegativeZeroCentroidSortsBeforePositiveZero) {
     const std::vector<Aabb> boxes = {plus, minus};
     const Bvh bvh = build_bvh_median(boxes, BuildParams{1});
     ASSERT_EQ(bvh.nodes.size(), 3u);
-    EXPECT_EQ(bvh.prim_ids, (std::vector<uint32_t>{1, 0}));
+    EXPECT_EQ(std::vector<uint32_t>(bvh.prim_ids.begin(), bvh.prim_ids.end()),
+              (std::vector<uint32_t>{1, 0}));
     // the root keeps the first -0 it meets in leaf order
     EXPECT_TRUE(std::signbit(bvh.nodes[0].lo[0]));
     EXPECT_TRUE(std::signbit(bvh.nodes[0].hi[0]));
