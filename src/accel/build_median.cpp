@@ -27,7 +27,9 @@ namespace {
 class TempBlock {
   public:
     explicit TempBlock(size_t bytes) : size_(bytes) {
-        if (bytes >= mapped_from) {
+        if (bytes >= large_block_bytes) {
+            base_ = map_pages(bytes);
+        } else if (bytes >= populated_from) {
             void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE,
                            MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
             if (p == MAP_FAILED) throw std::bad_alloc();
@@ -37,7 +39,9 @@ class TempBlock {
         }
     }
     ~TempBlock() {
-        if (size_ >= mapped_from)
+        if (size_ >= large_block_bytes)
+            unmap_pages(base_, size_);
+        else if (size_ >= populated_from)
             munmap(base_, size_);
         else
             ::operator delete(base_, std::align_val_t(64));
@@ -60,7 +64,7 @@ class TempBlock {
     }
 
   private:
-    static constexpr size_t mapped_from = size_t(1) << 20;
+    static constexpr size_t populated_from = size_t(1) << 20;
     std::byte* base_ = nullptr;
     size_t size_ = 0, used_ = 0;
 };
