@@ -8,9 +8,32 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
+#include "image/deflate.h"
+
+// stb_image_write writes the PNG's chunks; the zlib stream of its pixels is zlib_compress's
+// (deflate.h), which stb_image_write frees with free(). No exception crosses stb: a failure
+// returns null, which stbi_write_png reports as a failed write.
+static unsigned char* raylane_png_zlib(unsigned char* data, int data_len, int* out_len,
+                                       int /*quality*/) {
+    try {
+        const std::vector<uint8_t> z =
+            raylane::zlib_compress({data, static_cast<size_t>(data_len)});
+        auto* out = static_cast<unsigned char*>(std::malloc(z.size()));
+        if (!out) return nullptr;
+        std::memcpy(out, z.data(), z.size());
+        *out_len = static_cast<int>(z.size());
+        return out;
+    } catch (...) {
+        return nullptr;
+    }
+}
+
+#define STBIW_ZLIB_COMPRESS raylane_png_zlib
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_WRITE_NO_STDIO_UNUSED
 #if defined(__GNUC__)
@@ -109,12 +132,28 @@ std::string temp_name(const std::string& path) { return path + ".partial"; }
 
 }  // namespace
 
-void write_png(const std::string& path, const Film& film, Encoding encoding) {
+std::vector<uint8_t> encode_png(const Film& film, Encoding encoding) {
     const ImageBytes bytes = encode_film(film, encoding);
+    int size = 0;
+    unsigned char* png =
+        stbi_write_png_to_mem(bytes.data(), film.width * 3, film.width, film.height, 3, &size);
+    if (!png) throw std::bad_alloc();  // stb_image_write fails only when an allocation does
+    std::vector<uint8_t> out(png, png + size);
+    std::free(png);
+    return out;
+}
+
+void write_png(const std::string& path, const Film& film, Encoding encoding) {
+    const std::vector<uint8_t> png = encode_png(film, encoding);
     const std::string tmp = temp_name(path);
-    stbi_write_png_compression_level = 4;  // stb's default (8) costs more than the render
-    if (!stbi_write_png(tmp.c_str(), film.width, film.height, 3, bytes.data(), film.width * 3))
-        throw std::runtime_error(path + ": cannot write PNG");
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+    bool ok = std::fwrite(png.data(), 1, png.size(), f) == png.size();
+    ok = (std::fclose(f) == 0) && ok;
+    if (!ok) {
+        std::remove(tmp.c_str());
+        throw std::runtime_error(path + ": write failed");
+    }
     commit_file(tmp, path);
 }
 

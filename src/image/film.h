@@ -72,6 +72,10 @@ ImageBytes encode_film(const Film& film, Encoding encoding);
 /// interrupted write never leaves a half image under `path`. Throws std::runtime_error.
 void write_png(const std::string& path, const Film& film, Encoding encoding);
 
+/// The PNG file write_png writes, in memory: stb_image_write's chunks and filters around the
+/// zlib stream of image/deflate.h.
+std::vector<uint8_t> encode_png(const Film& film, Encoding encoding);
+
 /// Writes a little-endian linear float PFM (bottom row first, as the format says).
 void write_pfm(const std::string& path, const Film& film);
 
