@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/pages.h"
 #include "render/tiles.h"
 
 namespace {
@@ -22,6 +23,7 @@ extern "C" void on_stop_signal(int sig) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    raylane::keep_freed_memory();
     CLI::App app{"Raylane: a data-oriented SIMD packet ray tracer"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "help for every command");

@@ -1,9 +1,11 @@
 // core: large blocks of memory straight from the kernel (pages.h).
 #include "core/pages.h"
 
+#include <malloc.h>
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <limits>
 #include <new>
 
 namespace raylane {
@@ -34,6 +36,11 @@ std::byte* map_pages(size_t bytes) {
 
 void unmap_pages(std::byte* block, size_t bytes) noexcept {
     munmap(block, round_up(bytes, huge_page));
+}
+
+void keep_freed_memory() {
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest (HEAP_MAX_SIZE / 2)
+    mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
 }
 
 }  // namespace raylane

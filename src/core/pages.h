@@ -23,6 +23,14 @@ std::byte* map_pages(size_t bytes);
 /// Returns a block of map_pages(bytes) to the kernel.
 void unmap_pages(std::byte* block, size_t bytes) noexcept;
 
+/// Makes glibc's malloc keep what is freed: blocks up to 32 MiB come from the heap, which is
+/// never trimmed. By default it maps blocks over a threshold that moves with what was freed last
+/// and returns the heap's top to the kernel, so memory freed by one phase (the loader's, the
+/// build's) is faulted in again by the next, at 6–15 us a page on this VM: `raylane render
+/// scenes/dragon.json` takes 0.12 s with it and 0.12–0.17 s without. Called first by raylane's
+/// main and by every benchmark program, so that they measure the same heap.
+void keep_freed_memory();
+
 /// std::allocator for the large arrays that their makers overwrite: its value-initialising
 /// construct() default-initialises instead, so a vector of floats grown by resize() is left
 /// unwritten (a 1080p film is 25 MB that the renderers overwrite anyway), and blocks of
