@@ -13,14 +13,16 @@ namespace raylane {
 /// Blocks of at least this many bytes (one huge page) come from map_pages.
 inline constexpr size_t large_block_bytes = size_t(2) << 20;
 
-/// A zero-filled block of `bytes` rounded up to whole huge pages (2 MiB), aligned to one and
-/// advised as transparent huge pages, so that its first touch costs one page fault per 2 MiB
-/// instead of one per 4 KiB: on this VM a 25 MB film written by two threads takes 26–29 ms of
-/// page faults that way against 42–60 ms (docs/performance.md, "The whole command"). Where the
-/// kernel gives no huge pages it is an ordinary mapping. Throws std::bad_alloc.
+/// A block of `bytes` rounded up to whole huge pages (2 MiB), aligned to one and advised as
+/// transparent huge pages, so that its first touch costs one page fault per 2 MiB instead of
+/// one per 4 KiB: on this VM a 25 MB film written by two threads takes 26–29 ms of page faults
+/// that way against 42–60 ms (docs/performance.md, "The whole command"). Where the kernel gives
+/// no huge pages it is an ordinary mapping. A block of the same size given back earlier is
+/// taken first, its pages already in: its contents are unspecified. Throws std::bad_alloc.
 std::byte* map_pages(size_t bytes);
 
-/// Returns a block of map_pages(bytes) to the kernel.
+/// Gives back a block of map_pages(bytes). The newest 256 MiB of given-back blocks are kept for
+/// map_pages (the next frame's film, the next build's arrays); the rest go back to the kernel.
 void unmap_pages(std::byte* block, size_t bytes) noexcept;
 
 /// Makes glibc's malloc keep what is freed: blocks up to 32 MiB come from the heap, which is

@@ -1,0 +1,51 @@
+// core: map_pages and OverwriteAllocator (pages.h): huge-page-aligned blocks, a block given back
+// taken again by the next request of its size with its pages in, small arrays from the heap.
+#include "core/pages.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+namespace raylane {
+namespace {
+
+constexpr size_t mib = size_t(1) << 20;
+
+bool huge_page_aligned(const void* p) { return reinterpret_cast<uintptr_t>(p) % (2 * mib) == 0; }
+
+TEST(MapPages, GivesAlignedBlocksAndTakesAGivenBackOneAgain) {
+    std::byte* a = map_pages(3 * mib);
+    ASSERT_TRUE(huge_page_aligned(a));
+    std::memset(a, 0x5a, 4 * mib);  // rounded up to whole huge pages: 4 MiB are usable
+    unmap_pages(a, 3 * mib);
+    // the same rounded size: the same block, as it was left
+    std::byte* b = map_pages(4 * mib - 1);
+    EXPECT_EQ(b, a);
+    EXPECT_EQ(b[0], std::byte{0x5a});
+    EXPECT_EQ(b[4 * mib - 1], std::byte{0x5a});
+    // another size: another block, while b is held
+    std::byte* c = map_pages(5 * mib);
+    ASSERT_TRUE(huge_page_aligned(c));
+    EXPECT_NE(c, b);
+    std::memset(c, 1, 6 * mib);
+    unmap_pages(c, 5 * mib);
+    unmap_pages(b, 4 * mib - 1);
+}
+
+TEST(OverwriteAllocator, PutsLargeArraysOnHugePagesAndSmallOnesOnTheHeap) {
+    std::vector<float, OverwriteAllocator<float>> large(large_block_bytes / sizeof(float));
+    EXPECT_TRUE(huge_page_aligned(large.data()));
+    large.back() = 1.0f;
+    std::vector<float, OverwriteAllocator<float>> small(1000, 2.0f);  // values still assigned
+    EXPECT_EQ(small[999], 2.0f);
+    small.resize(2000);
+    EXPECT_EQ(small[0], 2.0f);
+    // growing a large array moves its elements
+    large.resize(large.size() * 2);
+    EXPECT_EQ(large[large_block_bytes / sizeof(float) - 1], 1.0f);
+}
+
+}  // namespace
+}  // namespace raylane
