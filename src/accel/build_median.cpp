@@ -23,14 +23,14 @@ namespace {
 /// of what a first build pays for on this VM (docs/performance.md, "Loading and building"), so
 /// a block of 2 MiB or more is huge pages (map_pages: one fault per 2 MiB, and few TLB misses
 /// in the radix sort's scatter), one of 1–2 MiB an anonymous mapping whose 4 KiB pages the
-/// kernel faults in with one call (MAP_POPULATE), a smaller one the heap's. Unmapped when the
-/// build ends, so nothing stays in the heap.
+/// kernel faults in with one call (MAP_POPULATE), a smaller one the heap's. Given back when the
+/// build ends (unmap_pages keeps the newest huge-page blocks for the next build).
 class TempBlock {
   public:
     explicit TempBlock(size_t bytes) : size_(bytes) {
         if (bytes >= large_block_bytes) {
             base_ = map_pages(bytes);
-        } else if (bytes >= populated_from) {
+        } else if (bytes >= populated_from && !sanitized) {
             void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE,
                            MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
             if (p == MAP_FAILED) throw std::bad_alloc();
@@ -42,7 +42,7 @@ class TempBlock {
     ~TempBlock() {
         if (size_ >= large_block_bytes)
             unmap_pages(base_, size_);
-        else if (size_ >= populated_from)
+        else if (size_ >= populated_from && !sanitized)
             munmap(base_, size_);
         else
             ::operator delete(base_, std::align_val_t(64));
@@ -66,6 +66,11 @@ class TempBlock {
 
   private:
     static constexpr size_t populated_from = size_t(1) << 20;
+#if defined(RAYLANE_ADDRESS_SANITIZER)
+    static constexpr bool sanitized = true;  // the sanitizer's allocator: red zones (pages.h)
+#else
+    static constexpr bool sanitized = false;
+#endif
     std::byte* base_ = nullptr;
     size_t size_ = 0, used_ = 0;
 };

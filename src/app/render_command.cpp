@@ -1,5 +1,6 @@
 // app: `raylane render [SCENE] [-o FILE] [--spp N] [--threads N] [--width W --height H] [--aov A]`.
 #include <tbb/info.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -58,7 +59,10 @@ int run_render(const RenderOptions& o) {
     // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages)
     const Film film = report_look ? hue_preserving_clamp(std::move(result.film))
                                   : visualise_aov(std::move(result.film), params.aov);
-    write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
+    // the bytes and the PNG's stream are made in parallel: on the threads --threads allows
+    tbb::task_arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic).execute([&] {
+        write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
+    });
 
     const RenderStats& s = result.stats;
     const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();

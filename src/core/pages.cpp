@@ -36,6 +36,7 @@ KeptBlocks& kept() {
 }  // namespace
 
 std::byte* map_pages(size_t bytes) {
+    if (bytes == 0 || bytes > std::numeric_limits<size_t>::max() / 2) throw std::bad_alloc();
     const size_t used = round_up(bytes, huge_page);
     {
         KeptBlocks& k = kept();

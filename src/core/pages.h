@@ -10,8 +10,22 @@
 
 namespace raylane {
 
-/// Blocks of at least this many bytes (one huge page) come from map_pages.
+#if defined(__SANITIZE_ADDRESS__)
+#define RAYLANE_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RAYLANE_ADDRESS_SANITIZER 1
+#endif
+#endif
+
+/// Blocks of at least this many bytes (one huge page) come from map_pages. Under
+/// AddressSanitizer none do: its allocator puts red zones around every array and keeps freed
+/// memory from being handed out again at once, which mapped and reused blocks would hide.
+#if defined(RAYLANE_ADDRESS_SANITIZER)
+inline constexpr size_t large_block_bytes = std::numeric_limits<size_t>::max();
+#else
 inline constexpr size_t large_block_bytes = size_t(2) << 20;
+#endif
 
 /// A block of `bytes` rounded up to whole huge pages (2 MiB), aligned to one and advised as
 /// transparent huge pages, so that its first touch costs one page fault per 2 MiB instead of

@@ -177,7 +177,7 @@ void compress_chunk(const uint8_t* data, size_t n, std::vector<uint8_t>& out) {
     // stored blocks of at most 65535 bytes when they are smaller (incompressible data); each
     // starts and ends on a byte
     const size_t stored = n + 5 * ((n + 65534) / 65535);
-    if (out.size() - start > stored) {
+    if (out.size() - start >= stored) {
         out.resize(start);
         for (size_t j = 0; j < n; j += 65535) {
             const auto len = static_cast<uint16_t>(std::min<size_t>(65535, n - j));

@@ -9,8 +9,9 @@ namespace raylane {
 
 /// `data` as a zlib stream. The data is cut into chunks of 256 KiB compressed independently and
 /// in parallel (no match reaches back into an earlier chunk), each by greedy LZ77 matching
-/// (4-byte hash, one candidate, 32 KiB window) in fixed-Huffman blocks, or stored when that is
-/// no smaller; each chunk ends with an empty stored block, so the next one starts on a byte.
+/// (4-byte hash, one candidate, 32 KiB window) in a fixed-Huffman block closed by an empty
+/// stored block, or in stored blocks when they are no larger: either way the next chunk starts
+/// on a byte.
 /// The chunks do not depend on the thread count: the same data gives the same bytes. It
 /// replaces stb_image_write's compressor for PNGs, which took longer than rendering the dragon:
 /// the dragon's 1080p PNG in 24 ms on one thread and 16 ms on two, against stb's 72 ms, in a

@@ -17,7 +17,7 @@
 
 // stb_image_write writes the PNG's chunks; the zlib stream of its pixels is zlib_compress's
 // (deflate.h), which stb_image_write frees with free(). No exception crosses stb: a failure
-// returns null, which stbi_write_png reports as a failed write.
+// returns null, which stbi_write_png_to_mem passes on (encode_png throws).
 static unsigned char* raylane_png_zlib(unsigned char* data, int data_len, int* out_len,
                                        int /*quality*/) {
     try {
@@ -35,7 +35,6 @@ static unsigned char* raylane_png_zlib(unsigned char* data, int data_len, int* o
 
 #define STBIW_ZLIB_COMPRESS raylane_png_zlib
 #define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STBI_WRITE_NO_STDIO_UNUSED
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"
@@ -100,6 +99,7 @@ const SrgbTable& srgb_table() {
 
 ImageBytes encode_film(const Film& film, Encoding encoding) {
     ImageBytes bytes(film.pixels.size() * 3);
+    if (bytes.empty()) return bytes;
     const SrgbTable& srgb = srgb_table();
     tbb::parallel_for(tbb::blocked_range<int>(0, film.height),
                       [&](const tbb::blocked_range<int>& r) {
@@ -130,6 +130,22 @@ void commit_file(const std::string& tmp, const std::string& path) {
 
 std::string temp_name(const std::string& path) { return path + ".partial"; }
 
+/// Writes a file through write(FILE*) -> bool into a temporary, then renames it over `path`:
+/// an interrupted write never leaves a half file there. Throws std::runtime_error.
+template <class Write>
+void write_file(const std::string& path, Write&& write) {
+    const std::string tmp = temp_name(path);
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+    bool ok = write(f);
+    ok = (std::fclose(f) == 0) && ok;
+    if (!ok) {
+        std::remove(tmp.c_str());
+        throw std::runtime_error(path + ": write failed");
+    }
+    commit_file(tmp, path);
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_png(const Film& film, Encoding encoding) {
@@ -137,41 +153,33 @@ std::vector<uint8_t> encode_png(const Film& film, Encoding encoding) {
     int size = 0;
     unsigned char* png =
         stbi_write_png_to_mem(bytes.data(), film.width * 3, film.width, film.height, 3, &size);
-    if (!png) throw std::bad_alloc();  // stb_image_write fails only when an allocation does
+    // stb_image_write and zlib_compress fail only when an allocation does
+    if (!png) throw std::runtime_error("cannot encode the PNG: out of memory");
     std::vector<uint8_t> out(png, png + size);
     std::free(png);
     return out;
 }
 
 void write_png(const std::string& path, const Film& film, Encoding encoding) {
-    const std::vector<uint8_t> png = encode_png(film, encoding);
-    const std::string tmp = temp_name(path);
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error(path + ": cannot open for writing");
-    bool ok = std::fwrite(png.data(), 1, png.size(), f) == png.size();
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok) {
-        std::remove(tmp.c_str());
-        throw std::runtime_error(path + ": write failed");
+    std::vector<uint8_t> png;
+    try {
+        png = encode_png(film, encoding);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": " + e.what());
     }
-    commit_file(tmp, path);
+    write_file(path, [&](std::FILE* f) {
+        return std::fwrite(png.data(), 1, png.size(), f) == png.size();
+    });
 }
 
 void write_pfm(const std::string& path, const Film& film) {
-    const std::string tmp = temp_name(path);
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error(path + ": cannot open for writing");
-    std::fprintf(f, "PF\n%d %d\n-1.0\n", film.width, film.height);
-    bool ok = true;
-    for (int y = film.height - 1; y >= 0 && ok; --y)
-        ok = std::fwrite(&film.at(0, y), sizeof(vec3), static_cast<size_t>(film.width), f) ==
-             static_cast<size_t>(film.width);
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok) {
-        std::remove(tmp.c_str());
-        throw std::runtime_error(path + ": write failed");
-    }
-    commit_file(tmp, path);
+    write_file(path, [&](std::FILE* f) {
+        bool ok = std::fprintf(f, "PF\n%d %d\n-1.0\n", film.width, film.height) > 0;
+        const auto w = static_cast<size_t>(film.width);
+        for (int y = film.height - 1; y >= 0 && ok && w > 0; --y)
+            ok = std::fwrite(&film.at(0, y), sizeof(vec3), w, f) == w;
+        return ok;
+    });
 }
 
 void write_image(const std::string& path, const Film& film, Encoding encoding) {

@@ -317,12 +317,17 @@ class SceneReader {
         if (const Json* v = find(top, "objects")) {
             Node objects{v, "$.objects"};
             expect(objects, objects.j->is_array(), "an array");
-            // how many objects name each mesh file: the last of them takes the loaded mesh
-            // (read_mesh), the others copy it
+            // how many objects name each mesh file (by its resolved path): the last of them
+            // takes the loaded mesh (read_mesh), the others copy it; read_mesh reports the
+            // names that do not resolve
             for (const Json& o : *v) {
                 if (!o.is_object()) continue;
                 const auto file = o.find("file");
-                if (file != o.end() && file->is_string()) ++mesh_uses_[file->get<std::string>()];
+                if (file == o.end() || !file->is_string()) continue;
+                try {
+                    ++mesh_uses_[find_model(file->get<std::string>(), dir_)];
+                } catch (const InputError&) {
+                }
             }
             for (size_t i = 0; i < v->size(); ++i) {
                 read_object(Node{&(*v)[i], element_path(objects.path, i)}, scene);
@@ -350,8 +355,9 @@ class SceneReader {
         const double grid = std::exp2(std::ceil(std::log2(distance)));
         return grid * glm::round(look_at / grid);
     }
-    std::map<std::string, Mesh> meshes_;       ///< loaded meshes by resolved path, before baking
-    std::map<std::string, int> mesh_uses_;     ///< objects still to read, by mesh file name
+    std::map<std::string, Mesh> meshes_;  ///< loaded meshes by resolved path, before baking, until
+                                          ///< their last object takes them
+    std::map<std::string, int> mesh_uses_;     ///< objects still to read, by resolved path
     std::map<std::string, int32_t> textures_;  ///< texture index by file and options
 
     [[noreturn]] void fail(const Node& n, const std::string& reason) const {
@@ -1101,7 +1107,7 @@ class SceneReader {
         auto it = meshes_.find(resolved);
         if (it == meshes_.end()) it = meshes_.emplace(resolved, load_mesh(resolved)).first;
         // the file's last object takes the mesh: a copy is megabytes of fresh pages
-        const bool last_use = --mesh_uses_[name] <= 0;
+        const bool last_use = --mesh_uses_[resolved] <= 0;
         Mesh mesh = last_use ? std::move(meshes_.extract(it).mapped()) : it->second;
         if (mesh.name.empty()) mesh.name = name;
         // normals: "auto" (the file's, else smooth), "file", "smooth" or "flat"

@@ -33,7 +33,9 @@ struct FileDescriptor {
 FileBytes::FileBytes(FileBytes&& other) noexcept
     : mapped_(std::exchange(other.mapped_, nullptr)),
       size_(std::exchange(other.size_, 0)),
-      data_(std::move(other.data_)) {}
+      data_(std::move(other.data_)) {
+    other.data_.clear();
+}
 
 FileBytes& FileBytes::operator=(FileBytes&& other) noexcept {
     if (this != &other) {
@@ -41,6 +43,7 @@ FileBytes& FileBytes::operator=(FileBytes&& other) noexcept {
         mapped_ = std::exchange(other.mapped_, nullptr);
         size_ = std::exchange(other.size_, 0);
         data_ = std::move(other.data_);
+        other.data_.clear();
     }
     return *this;
 }
@@ -87,7 +90,11 @@ FileBytes map_file(const std::string& path) {
     return bytes;
 }
 
-std::string read_file(const std::string& path) { return std::string(map_file(path).view()); }
+std::string read_file(const std::string& path) {
+    FileBytes bytes = map_file(path);
+    if (!bytes.mapped_) return std::move(bytes.data_);
+    return std::string(bytes.view());
+}
 
 std::string quote_for_error(std::string_view text, size_t max_chars) {
     static constexpr char hex[] = "0123456789abcdef";

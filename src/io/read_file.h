@@ -27,6 +27,7 @@ class FileBytes {
 
   private:
     friend FileBytes map_file(const std::string& path);
+    friend std::string read_file(const std::string& path);
     const char* mapped_ = nullptr;
     size_t size_ = 0;
     std::string data_;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -113,8 +114,9 @@ TEST(WritePng, ReadsBackAsTheFilmsBytes) {
     for (int y = 0; y < film.height; ++y)
         for (int x = 0; x < film.width; ++x)
             film.at(x, y) = vec3(float(x) / 300.0f, float(y % 9) / 8.0f, x > 150 ? 0.25f : 0.75f);
-    const std::string path =
-        (std::filesystem::temp_directory_path() / "raylane_deflate_test.png").string();
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("raylane_deflate_test_" + std::to_string(::getpid()) + ".png"))
+                                 .string();
     for (Encoding e : {Encoding::srgb, Encoding::linear}) {
         write_png(path, film, e);
         const ImageBytes want = encode_film(film, e);

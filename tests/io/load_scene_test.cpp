@@ -544,7 +544,7 @@ TEST(LoadScene, FitsThenTransformsAndBakesMeshes) {
 }
 
 // The last object that names a file takes the loaded mesh instead of a copy (load_scene.cpp,
-// read_mesh); a file named two ways is loaded again after its first name's last use.
+// read_mesh), counted by the resolved path: a file named two ways is one file.
 TEST(LoadScene, GivesEveryObjectOfAFileTheWholeMesh) {
     TempDir dir;
     write_file(dir.path / "quad.obj", quad_obj);

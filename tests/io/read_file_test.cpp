@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -43,6 +44,8 @@ TEST(MapFile, GivesARegularFilesBytesUnchanged) {
     write_bytes(dir.path / "a.bin", bytes);
     const FileBytes mapped = map_file((dir.path / "a.bin").string());
     EXPECT_EQ(mapped.view(), bytes);
+    // mapped, not read: the bytes start on a page
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(mapped.view().data()) % 4096, 0u);
     EXPECT_EQ(read_file((dir.path / "a.bin").string()), bytes);
     // moved: the new owner keeps the bytes, the old one is empty
     FileBytes moved = map_file((dir.path / "a.bin").string());
