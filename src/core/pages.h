@@ -1,5 +1,6 @@
 // core: large blocks of memory straight from the kernel, for the few arrays of megabytes that a
-// render writes once (the film and its 8-bit bytes, a mesh's BVH and vertices in leaf order).
+// render writes once (the film and its 8-bit bytes, a mesh's BVH and vertices in leaf order, the
+// build's temporaries), and the heap setting of raylane and its benchmarks.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,6 @@
 // image: the 8-bit encoding of a linear channel (film.h encode_channel): clamped, sRGB or
-// linear, rounded; NaN and infinities never reach the byte cast (numerics.md section 18).
+// linear, rounded; NaN and infinities never reach the byte cast (numerics.md section 18). The
+// table that gives the same sRGB bytes (SrgbTable) and a whole film's bytes (encode_film).
 #include "image/film.h"
 
 #include <gtest/gtest.h>
