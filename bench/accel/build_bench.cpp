@@ -2,11 +2,14 @@
 // dragon subdivided to 400k and 1.6M triangles (how build time grows with n).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
 #include "accel/bvh.h"
 #include "io/load_mesh.h"
+#include "support/summary.h"
 
 namespace raylane {
 namespace {
@@ -116,7 +119,55 @@ BENCHMARK_CAPTURE(BM_BuildMedianFirst, dragon_1600k, "dragon.ply", 2)
 BENCHMARK_CAPTURE(BM_BuildBvhMedian, dragon_100k, "dragon.ply", 0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BuildBvhMedian, dragon_1600k, "dragon.ply", 2)->Unit(benchmark::kMillisecond);
 
+/// `--summary`: build times (medians), their growth per 4x more triangles against n log n, and
+/// issue #2's targets (the 100k dragon under 15 ms on one thread; growth no faster than n log n).
+void print_summary(const bench::Measured& m, std::ostream& out) {
+    const char* sizes[3] = {"dragon_100k", "dragon_400k", "dragon_1600k"};
+    auto repeated = [&](int i) { return std::string("BM_BuildMedian/") + sizes[i]; };
+    auto first = [&](int i) {
+        return std::string("BM_BuildMedianFirst/") + sizes[i] + "/iterations:1";
+    };
+    auto triangles = [&](int i) {
+        const std::optional<double> n = m.median_counter(repeated(i), "triangles");
+        return n ? n : m.median_counter(first(i), "triangles");
+    };
+    auto text = [](std::optional<double> v, const char* format) {
+        if (!v) return std::string("—");
+        char t[32];
+        std::snprintf(t, sizeof t, format, *v);
+        return std::string(t);
+    };
+    out << "Median-split build of the dragon, subdivided; median of the repetitions\n\n"
+        << "| triangles | n log n, per 4x | repeated build | growth | first build of a process "
+           "| growth |\n|---:|---:|---:|---:|---:|---:|\n";
+    int steps = 0, steps_within = 0;  // 4x steps of the repeated build measured, within n log n
+    for (int i = 0; i < 3; ++i) {
+        const std::optional<double> n = triangles(i);
+        if (!n) continue;  // neither build of this size was run
+        std::optional<double> nlogn, growth, first_growth;
+        if (const std::optional<double> n0 = i > 0 ? triangles(i - 1) : std::nullopt) {
+            nlogn = (*n * std::log(*n)) / (*n0 * std::log(*n0));
+            growth = bench::divide(m.median_ms(repeated(i)), m.median_ms(repeated(i - 1)));
+            first_growth = bench::divide(m.median_ms(first(i)), m.median_ms(first(i - 1)));
+            if (growth) ++steps, steps_within += *growth <= *nlogn;
+        }
+        out << "| " << text(n, "%.0f") << " | " << text(nlogn, "%.2fx") << " | "
+            << text(m.median_ms(repeated(i)), "%.1f ms") << " | " << text(growth, "%.2fx") << " | "
+            << text(m.median_ms(first(i)), "%.1f ms") << " | " << text(first_growth, "%.2fx")
+            << " |\n";
+    }
+    const std::optional<double> small = m.median_ms(repeated(0));
+    out << "\nTargets of issue #2: the 100k dragon built in under 15 ms on one thread: "
+        << (small ? (*small < 15.0 ? "met" : "not met") : "—") << " (" << text(small, "%.1f ms")
+        << "); repeated builds growing no faster than n log n at each 4x step up to 1.6M: "
+        << (steps < 2 ? "—" : (steps_within == steps ? "met" : "not met"))
+        << ". First builds are one per process only when each size runs alone "
+           "(--benchmark_filter=BM_BuildMedianFirst/dragon_1600k).\n";
+}
+
 }  // namespace
 }  // namespace raylane
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
+}

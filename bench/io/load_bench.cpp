@@ -2,11 +2,13 @@
 // read included.
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "io/load_obj.h"
 #include "io/load_ply.h"
+#include "support/summary.h"
 
 namespace raylane {
 namespace {
@@ -45,7 +47,32 @@ BENCHMARK(BM_LoadObj_Dragon)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LoadPly_Dragon)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LoadPly_Bunny)->Unit(benchmark::kMillisecond);
 
+/// `--summary`: load times (medians) and issue #2's targets (dragon.obj < 30 ms, dragon.ply
+/// < 10 ms).
+void print_summary(const bench::Measured& m, std::ostream& out) {
+    struct Row {
+        const char* name;
+        const char* file;
+        double target_ms;
+    };
+    const Row rows[3] = {{"BM_LoadObj_Dragon", "dragon.obj", 30.0},
+                         {"BM_LoadPly_Dragon", "dragon.ply", 10.0},
+                         {"BM_LoadPly_Bunny", "bunny.ply", 0.0}};
+    out << "Median of the repetitions\n\n| file | time | target (issue #2) |\n|---|---:|---|\n";
+    for (const Row& row : rows) {
+        const std::optional<double> ms = m.median_ms(row.name);
+        char time[32] = "—", target[64] = "";
+        if (ms) std::snprintf(time, sizeof time, "%.1f ms", *ms);
+        if (row.target_ms > 0.0)
+            std::snprintf(target, sizeof target, "< %.0f ms: %s", row.target_ms,
+                          !ms ? "—" : (*ms < row.target_ms ? "met" : "not met"));
+        out << "| " << row.file << " | " << time << " | " << target << " |\n";
+    }
+}
+
 }  // namespace
 }  // namespace raylane
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
+}

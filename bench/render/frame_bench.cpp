@@ -3,11 +3,13 @@
 // the binned SAH build (a comparison option, `--bvh sah`).
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "io/load_scene.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "support/summary.h"
 
 namespace raylane {
 namespace {
@@ -76,7 +78,34 @@ BENCHMARK(BM_Frame_PacketSah)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+/// `--summary`: the frame's medians, packet over scalar, and issue #3's target (< 40 ms on 2
+/// threads).
+void print_summary(const bench::Measured& m, std::ostream& out) {
+    auto ms = [&](const char* path, int threads) {
+        return m.median_ms(std::string("BM_Frame_") + path + "/threads:" + std::to_string(threads) +
+                           "/real_time");
+    };
+    auto text = [](std::optional<double> v) {
+        if (!v) return std::string("—");
+        char t[32];
+        std::snprintf(t, sizeof t, "%.1f ms", *v);
+        return std::string(t);
+    };
+    out << "scenes/dragon.json, 1920x1080, 1 sample; median of the repetitions\n\n"
+        << "| threads | scalar | packet | packet, SAH | packet / scalar |\n"
+        << "|---:|---:|---:|---:|---:|\n";
+    for (int threads : {1, 2})
+        out << "| " << threads << " | " << text(ms("Scalar", threads)) << " | "
+            << text(ms("Packet", threads)) << " | " << text(ms("PacketSah", threads)) << " | "
+            << bench::ratio_text(ms("Scalar", threads), ms("Packet", threads)) << " |\n";
+    const std::optional<double> frame = ms("Packet", 2);
+    out << "\nTarget of issue #3: the packet frame under 40 ms on 2 threads: "
+        << (frame ? (*frame < 40.0 ? "met" : "not met") : "—") << " (" << text(frame) << ")\n";
+}
+
 }  // namespace
 }  // namespace raylane
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
+}

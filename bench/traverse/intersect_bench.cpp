@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -22,6 +23,7 @@
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
 #include "render/tiles.h"
+#include "support/summary.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
 
@@ -450,14 +452,76 @@ void register_all() {
     }
 }
 
+/// `--summary`: Mrays/s (median of the repetitions) of every contender per model, ray kind and
+/// thread count, as a Markdown table, and the ratios issue #3 sets targets for: the best Raylane
+/// packet contender (Packet*, Block*, through the median-split tree) over the scalar path and over
+/// Embree's best API; the SAH contenders over Embree's best.
+void print_summary(const bench::Measured& m, std::ostream& out) {
+    const std::vector<std::string> contenders = {"Scalar",  "Packet4",  "Packet8",     "Packet16",
+                                                 "Block8",  "Block16",  "Packet16Sah", "Block16Sah",
+                                                 "Embree1", "Embree16", "Embree1M"};
+    auto rate = [&](const std::string& c, const std::string& model, const std::string& kind,
+                    int threads) {
+        const std::optional<double> r =
+            m.median_counter("BM_Intersect_" + c + "/" + model + "/" + kind +
+                                 "/threads:" + std::to_string(threads) + "/real_time",
+                             "rays/s");
+        return r ? std::optional<double>(*r * 1e-6) : std::nullopt;
+    };
+    auto text = [](std::optional<double> v) {
+        if (!v) return std::string("—");
+        char t[32];
+        std::snprintf(t, sizeof t, *v < 100.0 ? "%.3g" : "%.0f", *v);
+        return std::string(t);
+    };
+    const char* target_text[3] = {"1.5x", "1.5x", "1.0x"};
+    const double target[3] = {1.5, 1.5, 1.0};  // primary, shadow, bounce: over Embree's best
+    const char* kinds[3] = {"primary", "shadow", "bounce"};
+    out << "Mrays/s, median of the repetitions; packet = the best of Packet* and Block*\n";
+    for (const std::string model : {"dragon", "bunny"}) {
+        std::vector<std::string> shown;
+        for (const std::string& c : contenders)
+            for (const char* kind : kinds)
+                for (int threads : {1, 2})
+                    if (rate(c, model, kind, threads) &&
+                        std::find(shown.begin(), shown.end(), c) == shown.end())
+                        shown.push_back(c);
+        if (shown.empty()) continue;
+        out << "\n| " << model << " |";
+        for (const std::string& c : shown) out << " " << c << " |";
+        out << " packet / scalar | packet / Embree's best | SAH / Embree's best | target |\n|---|";
+        for (size_t i = 0; i < shown.size() + 4; ++i) out << "---:|";
+        out << "\n";
+        for (int k = 0; k < 3; ++k) {
+            for (int threads : {1, 2}) {
+                bool ran = false;
+                for (const std::string& c : shown) ran = ran || rate(c, model, kinds[k], threads);
+                if (!ran) continue;
+                out << "| " << kinds[k] << ", " << threads
+                    << (threads == 1 ? " thread" : " threads") << " |";
+                for (const std::string& c : shown)
+                    out << " " << text(rate(c, model, kinds[k], threads)) << " |";
+                auto r = [&](const char* c) { return rate(c, model, kinds[k], threads); };
+                const auto packet = bench::best_of(
+                    {r("Packet4"), r("Packet8"), r("Packet16"), r("Block8"), r("Block16")});
+                const auto sah = bench::best_of({r("Packet16Sah"), r("Block16Sah")});
+                const auto embree = bench::best_of({r("Embree1"), r("Embree16"), r("Embree1M")});
+                const auto over_embree = bench::divide(packet, embree);
+                out << " " << bench::ratio_text(packet, r("Scalar")) << " | "
+                    << bench::ratio_text(packet, embree) << " | " << bench::ratio_text(sah, embree)
+                    << " | " << target_text[k] << ": " << bench::verdict(over_embree, target[k])
+                    << " |\n";
+            }
+        }
+    }
+    out << "\nTargets of issue #3: packet / Embree's best >= 1.5x (primary, shadow), >= 1.0x "
+           "(bounce); packet / scalar >= 4x on primary rays and >= 1x on bounce rays.\n";
+}
+
 }  // namespace
 }  // namespace raylane
 
 int main(int argc, char** argv) {
     raylane::register_all();
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-    return 0;
+    return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
 }
