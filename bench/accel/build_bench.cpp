@@ -131,12 +131,6 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
         const std::optional<double> n = m.median_counter(repeated(i), "triangles");
         return n ? n : m.median_counter(first(i), "triangles");
     };
-    auto text = [](std::optional<double> v, const char* format) {
-        if (!v) return std::string("—");
-        char t[32];
-        std::snprintf(t, sizeof t, format, *v);
-        return std::string(t);
-    };
     out << "Median-split build of the dragon, subdivided; median of the repetitions\n\n"
         << "| triangles | n log n, per 4x | repeated build | growth | first build of a process "
            "| growth |\n|---:|---:|---:|---:|---:|---:|\n";
@@ -149,16 +143,20 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
             nlogn = (*n * std::log(*n)) / (*n0 * std::log(*n0));
             growth = bench::divide(m.median_ms(repeated(i)), m.median_ms(repeated(i - 1)));
             first_growth = bench::divide(m.median_ms(first(i)), m.median_ms(first(i - 1)));
-            if (growth) ++steps, steps_within += *growth <= *nlogn;
+            if (growth) {
+                ++steps;
+                steps_within += *growth <= *nlogn;
+            }
         }
-        out << "| " << text(n, "%.0f") << " | " << text(nlogn, "%.2fx") << " | "
-            << text(m.median_ms(repeated(i)), "%.1f ms") << " | " << text(growth, "%.2fx") << " | "
-            << text(m.median_ms(first(i)), "%.1f ms") << " | " << text(first_growth, "%.2fx")
-            << " |\n";
+        out << "| " << bench::figure_text(n, "%.0f") << " | " << bench::figure_text(nlogn, "%.2fx")
+            << " | " << bench::figure_text(m.median_ms(repeated(i)), "%.1f ms") << " | "
+            << bench::figure_text(growth, "%.2fx") << " | "
+            << bench::figure_text(m.median_ms(first(i)), "%.1f ms") << " | "
+            << bench::figure_text(first_growth, "%.2fx") << " |\n";
     }
     const std::optional<double> small = m.median_ms(repeated(0));
     out << "\nTargets of issue #2: the 100k dragon built in under 15 ms on one thread: "
-        << (small ? (*small < 15.0 ? "met" : "not met") : "—") << " (" << text(small, "%.1f ms")
+        << bench::verdict_below(small, 15.0) << " (" << bench::figure_text(small, "%.1f ms")
         << "); repeated builds growing no faster than n log n at each 4x step up to 1.6M: "
         << (steps < 2 ? "—" : (steps_within == steps ? "met" : "not met"))
         << ". First builds are one per process only when each size runs alone "

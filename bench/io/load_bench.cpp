@@ -61,12 +61,11 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
     out << "Median of the repetitions\n\n| file | time | target (issue #2) |\n|---|---:|---|\n";
     for (const Row& row : rows) {
         const std::optional<double> ms = m.median_ms(row.name);
-        char time[32] = "—", target[64] = "";
-        if (ms) std::snprintf(time, sizeof time, "%.1f ms", *ms);
+        out << "| " << row.file << " | " << bench::figure_text(ms, "%.1f ms") << " | ";
         if (row.target_ms > 0.0)
-            std::snprintf(target, sizeof target, "< %.0f ms: %s", row.target_ms,
-                          !ms ? "—" : (*ms < row.target_ms ? "met" : "not met"));
-        out << "| " << row.file << " | " << time << " | " << target << " |\n";
+            out << bench::figure_text(row.target_ms, "< %.0f ms: ")
+                << bench::verdict_below(ms, row.target_ms);
+        out << " |\n";
     }
 }
 

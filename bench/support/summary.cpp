@@ -2,6 +2,7 @@
 #include "summary.h"
 
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -22,18 +23,29 @@ std::optional<double> median(std::vector<double> v) {
 /// The console reporter, keeping every run's figures for the summary.
 class SummaryReporter : public benchmark::ConsoleReporter {
   public:
-    explicit SummaryReporter(Measured& measured) : measured_(measured) {}
+    explicit SummaryReporter(Measured& measured)
+        : ConsoleReporter(isatty(fileno(stdout)) ? OO_Color : OO_None), measured_(measured) {}
 
     void ReportRuns(const std::vector<Run>& runs) override {
         for (const Run& run : runs) {
-            if (run.run_type != Run::RT_Iteration || run.error_occurred) continue;
+            if (run.error_occurred) continue;
             const std::string name = run.benchmark_name();
+            const bool repetition = run.run_type == Run::RT_Iteration;
+            if (!repetition && run.aggregate_name != "median") continue;
+            const std::string base = repetition ? name : name.substr(0, name.size() - 7);
             // real time in ms, whatever unit the benchmark reports in
-            const double to_ms = benchmark::GetTimeUnitMultiplier(benchmark::kMillisecond) /
-                                 benchmark::GetTimeUnitMultiplier(run.time_unit);
-            measured_.ms[name].push_back(run.GetAdjustedRealTime() * to_ms);
-            for (const auto& [key, counter] : run.counters)
-                measured_.counters[name][key].push_back(counter.value);
+            const double ms = run.GetAdjustedRealTime() *
+                              benchmark::GetTimeUnitMultiplier(benchmark::kMillisecond) /
+                              benchmark::GetTimeUnitMultiplier(run.time_unit);
+            if (repetition) {
+                measured_.ms[base].push_back(ms);
+                for (const auto& [key, counter] : run.counters)
+                    measured_.counters[base][key].push_back(counter.value);
+            } else {  // "NAME_median"
+                measured_.median_aggregate_ms[base] = ms;
+                for (const auto& [key, counter] : run.counters)
+                    measured_.median_aggregate_counters[base][key] = counter.value;
+            }
         }
         ConsoleReporter::ReportRuns(runs);
     }
@@ -45,36 +57,57 @@ class SummaryReporter : public benchmark::ConsoleReporter {
 }  // namespace
 
 std::optional<double> Measured::median_ms(const std::string& name) const {
-    const auto it = ms.find(name);
-    return it == ms.end() ? std::nullopt : median(it->second);
+    if (const auto it = ms.find(name); it != ms.end()) return median(it->second);
+    if (const auto it = median_aggregate_ms.find(name); it != median_aggregate_ms.end())
+        return it->second;
+    return std::nullopt;
 }
 
 std::optional<double> Measured::median_counter(const std::string& name,
                                                const std::string& counter) const {
-    const auto it = counters.find(name);
-    if (it == counters.end()) return std::nullopt;
-    const auto c = it->second.find(counter);
-    return c == it->second.end() ? std::nullopt : median(c->second);
+    if (const auto it = counters.find(name); it != counters.end()) {
+        const auto c = it->second.find(counter);
+        return c == it->second.end() ? std::nullopt : median(c->second);
+    }
+    if (const auto it = median_aggregate_counters.find(name);
+        it != median_aggregate_counters.end()) {
+        const auto c = it->second.find(counter);
+        if (c != it->second.end()) return c->second;
+    }
+    return std::nullopt;
 }
 
-int run_benchmarks(int argc, char** argv, const Summary& summary) {
-    bool want_summary = false;
+int run_benchmarks(int argc, char** argv, Summary summary) {
+    bool want_summary = false, other_format = false;
     int kept = 1;
     for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--summary") == 0)
+        if (std::strcmp(argv[i], "--summary") == 0) {
             want_summary = true;
-        else
-            argv[kept++] = argv[i];
+            continue;
+        }
+        if (std::strncmp(argv[i], "--benchmark_format=", 19) == 0)
+            other_format = std::strcmp(argv[i] + 19, "console") != 0;
+        argv[kept++] = argv[i];
     }
     argc = kept;
+    argv[argc] = nullptr;
+    if (want_summary && other_format) {
+        std::fprintf(stderr,
+                     "%s: --summary prints to the console; it does not combine with "
+                     "--benchmark_format (use --benchmark_out for a file)\n",
+                     argv[0]);
+        return 2;
+    }
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     if (want_summary) {
         Measured measured;
         SummaryReporter reporter(measured);
         benchmark::RunSpecifiedBenchmarks(&reporter);
-        std::cout << '\n';
-        summary(measured, std::cout);
+        if (!measured.empty()) {  // not for --benchmark_list_tests
+            std::cout << '\n';
+            summary(measured, std::cout);
+        }
     } else {
         benchmark::RunSpecifiedBenchmarks();
     }
@@ -94,17 +127,25 @@ std::optional<double> best_of(const std::vector<std::optional<double>>& values) 
     return best;
 }
 
-std::string ratio_text(std::optional<double> num, std::optional<double> den) {
-    const std::optional<double> r = divide(num, den);
-    if (!r) return "—";
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2fx", *r);
+std::string figure_text(std::optional<double> value, const char* format) {
+    if (!value) return "—";
+    char text[64];
+    std::snprintf(text, sizeof text, format, *value);
     return text;
 }
 
-std::string verdict(std::optional<double> ratio, double target) {
-    if (!ratio) return "—";
-    return *ratio >= target ? "met" : "not met";
+std::string ratio_text(std::optional<double> num, std::optional<double> den) {
+    return figure_text(divide(num, den), "%.2fx");
+}
+
+std::string verdict(std::optional<double> value, double target) {
+    if (!value) return "—";
+    return *value >= target ? "met" : "not met";
+}
+
+std::string verdict_below(std::optional<double> value, double limit) {
+    if (!value) return "—";
+    return *value < limit ? "met" : "not met";
 }
 
 }  // namespace raylane::bench

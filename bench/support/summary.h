@@ -3,7 +3,6 @@
 // figures and the targets they are held to.
 #pragma once
 
-#include <functional>
 #include <map>
 #include <optional>
 #include <ostream>
@@ -12,34 +11,45 @@
 
 namespace raylane::bench {
 
-/// Every run's real time (ms) and counters, by benchmark name ("BM_Frame_Packet/threads:2/
-/// real_time"), one entry per repetition; aggregates (mean, median, ...) are left out.
+/// Every run's real time (ms) and counters by benchmark name, e.g.
+/// "BM_Frame_Packet/threads:2/real_time": one entry per repetition, and the "median" aggregates
+/// for when only aggregates are reported (--benchmark_report_aggregates_only).
 struct Measured {
     std::map<std::string, std::vector<double>> ms;
     std::map<std::string, std::map<std::string, std::vector<double>>> counters;
+    std::map<std::string, double> median_aggregate_ms;
+    std::map<std::string, std::map<std::string, double>> median_aggregate_counters;
 
     /// Median over the repetitions of the real time, or of a counter; none if not run.
     std::optional<double> median_ms(const std::string& name) const;
     std::optional<double> median_counter(const std::string& name, const std::string& counter) const;
+    bool empty() const { return ms.empty() && median_aggregate_ms.empty(); }
 };
 
-using Summary = std::function<void(const Measured&, std::ostream&)>;
+/// Prints a program's table from its measurements.
+using Summary = void (*)(const Measured&, std::ostream&);
 
 /// Runs the benchmarks as BENCHMARK_MAIN does. With `--summary` (taken out of argv first) the
-/// runs are shown on the console as usual (`--benchmark_format` does not apply) and then
-/// summary(measured, std::cout) prints its table.
-int run_benchmarks(int argc, char** argv, const Summary& summary);
-
-/// "1.23x", or "—" when either figure is missing.
-std::string ratio_text(std::optional<double> num, std::optional<double> den);
-
-/// "met" when ratio >= target, "not met" when below, "—" when the ratio is missing.
-std::string verdict(std::optional<double> ratio, double target);
+/// runs are shown on the console (colour when stdout is a terminal; `--benchmark_format` other
+/// than console is refused) and then summary(measured, std::cout) prints its table.
+int run_benchmarks(int argc, char** argv, Summary summary);
 
 /// a / b when both are there.
 std::optional<double> divide(std::optional<double> a, std::optional<double> b);
 
 /// The largest of the values that are there.
 std::optional<double> best_of(const std::vector<std::optional<double>>& values);
+
+/// The value by a printf format ("%.1f ms"), or "—" when it is missing.
+std::string figure_text(std::optional<double> value, const char* format);
+
+/// "1.23x", or "—" when either figure is missing.
+std::string ratio_text(std::optional<double> num, std::optional<double> den);
+
+/// "met" when value >= target, "not met" when below, "—" when the value is missing.
+std::string verdict(std::optional<double> value, double target);
+
+/// "met" when value < limit (a time under its target), "not met" when not, "—" when missing.
+std::string verdict_below(std::optional<double> value, double limit);
 
 }  // namespace raylane::bench
