@@ -29,10 +29,9 @@ class SummaryReporter : public benchmark::ConsoleReporter {
     void ReportRuns(const std::vector<Run>& runs) override {
         for (const Run& run : runs) {
             if (run.error_occurred) continue;
-            const std::string name = run.benchmark_name();
             const bool repetition = run.run_type == Run::RT_Iteration;
             if (!repetition && run.aggregate_name != "median") continue;
-            const std::string base = repetition ? name : name.substr(0, name.size() - 7);
+            const std::string base = run.run_name.str();  // without "_median"
             // real time in ms, whatever unit the benchmark reports in
             const double ms = run.GetAdjustedRealTime() *
                               benchmark::GetTimeUnitMultiplier(benchmark::kMillisecond) /
@@ -78,6 +77,7 @@ std::optional<double> Measured::median_counter(const std::string& name,
 }
 
 int run_benchmarks(int argc, char** argv, Summary summary) {
+    if (argc < 1) return 2;
     bool want_summary = false, other_format = false;
     int kept = 1;
     for (int i = 1; i < argc; ++i) {
