@@ -30,10 +30,10 @@ struct Measured {
 using Summary = void (*)(const Measured&, std::ostream&);
 
 /// Runs the benchmarks as BENCHMARK_MAIN does. With `--summary` (taken out of argv first) the
-/// runs are shown on the console (colour when stdout is a terminal, whatever --benchmark_color
-/// says; counters as columns only with --benchmark_counters_tabular ignored too; a
-/// `--benchmark_format` other than console is refused, the BENCHMARK_FORMAT variable ignored)
-/// and then summary(measured, std::cout) prints its table.
+/// runs are shown on the console, in colour when stdout is a terminal, and then
+/// summary(measured, std::cout) prints its table. --benchmark_color,
+/// --benchmark_counters_tabular and the BENCHMARK_FORMAT variable do not apply then; a
+/// --benchmark_format other than console is refused.
 int run_benchmarks(int argc, char** argv, Summary summary);
 
 /// a / b when both are there.
