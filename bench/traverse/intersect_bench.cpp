@@ -26,6 +26,7 @@
 #include "support/summary.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
+#include "traverse/intersect_stream.h"
 
 #ifdef RAYLANE_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -34,8 +35,9 @@
 namespace raylane {
 namespace {
 
-constexpr size_t chunk = 256;      // rays per task
-constexpr size_t tile_rays = 256;  // primary rays per 16x16 tile
+constexpr size_t chunk = 256;          // rays per task
+constexpr size_t stream_rays = 16384;  // rays per task and stream of the Stream contender
+constexpr size_t tile_rays = 256;      // primary rays per 16x16 tile
 
 /// A ray set in SoA form, padded with inactive rays (t_max = -1) to a multiple of `chunk`, so
 /// every contender reads its rays without repacking (as a renderer generating them would).
@@ -214,14 +216,17 @@ bool active_ray(const Ray& r) { return r.t_max >= r.t_min; }
 /// second. Chunks cover the padded SoA arrays; the scalar and AoS contenders stop at the last ray
 /// and skip inactive slots.
 template <class Body>
-void run(benchmark::State& state, const std::vector<Ray>& rays, int threads, Body&& body) {
+void run(benchmark::State& state, const std::vector<Ray>& rays, int threads, Body&& body,
+         size_t rays_per_task = chunk) {
     const size_t real = size_t(std::count_if(rays.begin(), rays.end(), active_ray));
+    const size_t padded = (rays.size() + chunk - 1) / chunk * chunk;
     tbb::task_arena arena(threads);
     for (auto _ : state) {
         arena.execute([&] {
-            tbb::parallel_for(size_t(0), (rays.size() + chunk - 1) / chunk, [&](size_t c) {
+            const size_t tasks = (rays.size() + rays_per_task - 1) / rays_per_task;
+            tbb::parallel_for(size_t(0), tasks, [&](size_t c) {
                 enable_flush_to_zero();
-                body(c * chunk, (c + 1) * chunk);
+                body(c * rays_per_task, std::min((c + 1) * rays_per_task, padded));
             });
         });
     }
@@ -298,6 +303,30 @@ void bench_block(benchmark::State& state, std::string scene, std::string set, in
             }
         }
     });
+}
+
+/// Streams of stream_rays consecutive rays through intersect_closest_stream (closest hits only:
+/// shadow rays are coherent, the blocks' case).
+template <int W>
+void bench_stream(benchmark::State& state, std::string scene, std::string set, int threads) {
+    Workload* w = workload(scene);
+    if (!w) return state.SkipWithError("scene or model not found");
+    const std::vector<Ray>& rays = rays_of(*w, set);
+    const RaySoa& soa = soa_of(*w, set);
+    run(
+        state, rays, threads,
+        [&](size_t first, size_t last) {
+            thread_local std::vector<RayPacket<W>> p;
+            thread_local std::vector<vmask<W>> active;
+            thread_local std::vector<HitPacket<W>> hits;
+            const size_t count = (last - first) / W;
+            p.resize(count), active.resize(count), hits.resize(count);
+            for (size_t k = 0; k < count; ++k) p[k] = load_packet<W>(soa, first + k * W, active[k]);
+            intersect_closest_stream(w->scene, w->accel, p.data(), active.data(), hits.data(),
+                                     int(count));
+            benchmark::DoNotOptimize(hits[0]);
+        },
+        stream_rays);
 }
 
 #ifdef RAYLANE_HAVE_EMBREE
@@ -407,6 +436,16 @@ void register_block(const std::string& scene, const std::string& set, int thread
         ->UseRealTime();
 }
 
+/// Stream<W>: intersect_closest_stream on stream_rays rays at a time.
+template <int W>
+void register_stream(const std::string& scene, const std::string& set, int threads) {
+    const std::string suffix = "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
+    benchmark::RegisterBenchmark(("BM_Intersect_Stream" + std::to_string(W) + suffix).c_str(),
+                                 bench_stream<W>, scene, set, threads)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+}
+
 void register_all() {
     for (std::string scene : {"dragon", "bunny"}) {
         for (std::string set : {"primary", "shadow", "bounce"}) {
@@ -423,6 +462,13 @@ void register_all() {
                 if constexpr (width_supported<16>) register_packet<16>(scene, set, threads);
                 if constexpr (width_supported<8>) register_block<8>(scene, set, threads);
                 if constexpr (width_supported<16>) register_block<16>(scene, set, threads);
+                // streams of incoherent rays at the widest width (closest hits only)
+                if (set != "shadow") {
+                    if constexpr (width_supported<16>)
+                        register_stream<16>(scene, set, threads);
+                    else if constexpr (width_supported<8>)
+                        register_stream<8>(scene, set, threads);
+                }
                 // the widest packets and blocks again through the SAH build (a comparison
                 // option: the rays are the same, the tree is not the report's)
                 if constexpr (width_supported<16>) {
@@ -454,13 +500,13 @@ void register_all() {
 
 /// `--summary`: Mrays/s (median of the repetitions) of every contender per model, ray kind and
 /// thread count, as a Markdown table, and the ratios issue #3 sets targets for: the best Raylane
-/// packet contender (Packet4/8/16, Block8/16: the median-split tree) over the scalar path and
-/// over Embree's best API; the SAH contenders over Embree's best. The target against Embree is
-/// judged only when every Embree API of that ray kind was run.
+/// packet contender (Packet4/8/16, Block8/16, Stream8/16: the median-split tree) over the scalar
+/// path and over Embree's best API; the SAH contenders over Embree's best. The target against
+/// Embree is judged only when every Embree API of that ray kind was run.
 void print_summary(const bench::Measured& m, std::ostream& out) {
-    const char* contenders[] = {"Scalar",  "Packet4",    "Packet8",   "Packet16",    "Block8",
-                                "Block16", "Packet8Sah", "Block8Sah", "Packet16Sah", "Block16Sah",
-                                "Embree1", "Embree16",   "Embree1M"};
+    const char* contenders[] = {"Scalar",      "Packet4",    "Packet8",  "Packet16",   "Block8",
+                                "Block16",     "Stream8",    "Stream16", "Packet8Sah", "Block8Sah",
+                                "Packet16Sah", "Block16Sah", "Embree1",  "Embree16",   "Embree1M"};
     const char* kinds[3] = {"primary", "shadow", "bounce"};
     const double over_embree[3] = {1.5, 1.5, 1.0};  // targets, by kind
     const double over_scalar[3] = {4.0, 0.0, 1.0};  // (none for shadow rays)
@@ -471,7 +517,8 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
                              "rays/s");
         return r ? std::optional<double>(*r * 1e-6) : std::nullopt;
     };
-    out << "Mrays/s, median of the repetitions; packet = the best of Packet4/8/16 and Block8/16\n";
+    out << "Mrays/s, median of the repetitions; packet = the best of Packet4/8/16, Block8/16 and "
+           "Stream8/16\n";
     for (const char* model : {"dragon", "bunny"}) {
         std::vector<const char*> shown;
         for (const char* c : contenders) {
@@ -498,8 +545,9 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
                     const std::optional<double> v = r(c);
                     out << " " << bench::figure_text(v, v && *v >= 100.0 ? "%.0f" : "%.3g") << " |";
                 }
-                const auto packet = bench::best_of(
-                    {r("Packet4"), r("Packet8"), r("Packet16"), r("Block8"), r("Block16")});
+                const auto packet =
+                    bench::best_of({r("Packet4"), r("Packet8"), r("Packet16"), r("Block8"),
+                                    r("Block16"), r("Stream8"), r("Stream16")});
                 const auto sah = bench::best_of(
                     {r("Packet8Sah"), r("Block8Sah"), r("Packet16Sah"), r("Block16Sah")});
                 const bool every_embree =

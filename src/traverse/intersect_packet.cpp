@@ -10,6 +10,7 @@
 
 #include "traverse/box_packet.h"
 #include "traverse/cylinder_packet.h"
+#include "traverse/hit_update_packet.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/plane_packet.h"
 #include "traverse/slab_packet.h"
@@ -36,46 +37,6 @@ RayPacket<W> to_object_space(const Object& object, const RayPacket<W>& rays) {
     r.org = {row(0, rays.org, 1.0f), row(1, rays.org, 1.0f), row(2, rays.org, 1.0f)};
     r.dir = {row(0, rays.dir, 0.0f), row(1, rays.dir, 0.0f), row(2, rays.dir, 0.0f)};
     return r;
-}
-
-/// Upper end of the open interval a node or candidate must beat (intersect_scalar.cpp: t_limit):
-/// tie_ulps above the current hit, so ties and near-ties reach the (t, object, prim) tie-break.
-template <int W>
-vfloat<W> t_limit(const RayPacket<W>& rays, const HitPacket<W>& hit) {
-    const vfloat<W> inf(infinity);
-    const vmask<W> has_hit = hit.t < inf;
-    if (none(has_hit)) return rays.t_max;
-    const vfloat<W> up = int_as_float(float_as_int(abs(hit.t)) + vint<W>(tie_ulps));
-    return select(has_hit, select(up < inf, up, inf), rays.t_max);
-}
-
-/// Lanes of `cand` whose candidate (t, object, prim) beats the current hit. Ties in t are rare
-/// and decided lane by lane.
-template <int W>
-vmask<W> better(const vfloat<W>& t, uint32_t object, uint32_t prim, const HitPacket<W>& hit,
-                vmask<W> cand) {
-    vmask<W> win = mask_and(cand, t < hit.t);
-    const vmask<W> tie = mask_and(cand, t == hit.t);
-    if (any(tie)) {
-        uint32_t win_bits = bits(win);
-        for_each_active(tie, [&](int i) {
-            const uint32_t o = static_cast<uint32_t>(get(hit.object, i));
-            const uint32_t p = static_cast<uint32_t>(get(hit.prim, i));
-            if (object < o || (object == o && prim < p)) win_bits |= 1u << i;
-        });
-        win = mask_from_bits<W>(win_bits);
-    }
-    return win;
-}
-
-template <int W>
-void record(HitPacket<W>& hit, vmask<W> win, const vfloat<W>& t, uint32_t object, uint32_t prim,
-            const vfloat<W>& u, const vfloat<W>& v) {
-    hit.t = select(win, t, hit.t);
-    hit.u = select(win, u, hit.u);
-    hit.v = select(win, v, hit.v);
-    hit.object = select(win, vint<W>(static_cast<int32_t>(object)), hit.object);
-    hit.prim = select(win, vint<W>(static_cast<int32_t>(prim)), hit.prim);
 }
 
 /// Analytic shapes: the packet twins of the shape tests; single triangles lane by lane.
@@ -153,7 +114,8 @@ struct ClosestEntry {
 // path's.
 template <int W>
 void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPacket<W>& rays,
-                            vmask<W> active, HitPacket<W>& hit, vint<W>* nodes_visited) {
+                            vmask<W> active, HitPacket<W>& hit, vint<W>* nodes_visited,
+                            uint32_t start) {
     if (mesh.bvh.nodes.empty()) return;
     const WatertightPacket<W> wr = make_watertight_ray(rays, active);
     const SlabPacket<W> sr = make_slab_ray(rays);
@@ -178,10 +140,12 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPac
     vfloat<W> t_root;
     const vec3 root_lo(nodes[0].lo[0], nodes[0].lo[1], nodes[0].lo[2]);
     const vec3 root_hi(nodes[0].hi[0], nodes[0].hi[1], nodes[0].hi[2]);
-    vmask<W> m = intersect_slab(sr, root_lo, root_hi, rays.t_min, limit, t_root, active);
+    vmask<W> m = start != 0
+                     ? active
+                     : intersect_slab(sr, root_lo, root_hi, rays.t_min, limit, t_root, active);
     ClosestEntry<W> stack[stack_size];
     int top = 0;
-    uint32_t node_index = 0;
+    uint32_t node_index = start;
     while (any(m)) {  // m: the lanes that touch node_index's box
         const BvhNode& node = nodes[node_index];
         if (node.is_leaf()) {
@@ -322,11 +286,11 @@ vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vma
 template <int W>
 void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t object_index,
                               const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
-                              vint<W>* nodes_visited) {
+                              vint<W>* nodes_visited, uint32_t start = 0) {
     const Object& object = scene.objects[object_index];
     if (object.kind == ShapeKind::mesh) {
         intersect_mesh_closest(accel.meshes[object.shape], object_index, rays, active, hit,
-                               nodes_visited);
+                               nodes_visited, start);
         return;
     }
     RayPacket<W> r = to_object_space(object, rays);
@@ -349,6 +313,14 @@ vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t o
 }
 
 }  // namespace
+
+template <int W>
+void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint32_t object,
+                                   const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
+                                   uint32_t start) {
+    intersect_object_closest(scene, accel, object, rays, active, hit,
+                             static_cast<vint<W>*>(nullptr), start);
+}
 
 template <int W>
 HitPacket<W> intersect_closest(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
@@ -1012,6 +984,9 @@ template void intersect_closest_block<1>(const Scene&, const Accel&, const RayPa
                                          const vmask<1>*, HitPacket<1>*, int);
 template void intersect_any_block<1>(const Scene&, const Accel&, const RayPacket<1>*,
                                      const vmask<1>*, vmask<1>*, int);
+template void intersect_object_closest_from<1>(const Scene&, const Accel&, uint32_t,
+                                               const RayPacket<1>&, vmask<1>, HitPacket<1>&,
+                                               uint32_t);
 template SurfacePacket<1> surface_at<1>(const Scene&, const RayPacket<1>&, const HitPacket<1>&,
                                         vmask<1>);
 #if XSIMD_WITH_SSE2
@@ -1022,6 +997,9 @@ template void intersect_closest_block<4>(const Scene&, const Accel&, const RayPa
                                          const vmask<4>*, HitPacket<4>*, int);
 template void intersect_any_block<4>(const Scene&, const Accel&, const RayPacket<4>*,
                                      const vmask<4>*, vmask<4>*, int);
+template void intersect_object_closest_from<4>(const Scene&, const Accel&, uint32_t,
+                                               const RayPacket<4>&, vmask<4>, HitPacket<4>&,
+                                               uint32_t);
 template SurfacePacket<4> surface_at<4>(const Scene&, const RayPacket<4>&, const HitPacket<4>&,
                                         vmask<4>);
 #endif
@@ -1033,6 +1011,9 @@ template void intersect_closest_block<8>(const Scene&, const Accel&, const RayPa
                                          const vmask<8>*, HitPacket<8>*, int);
 template void intersect_any_block<8>(const Scene&, const Accel&, const RayPacket<8>*,
                                      const vmask<8>*, vmask<8>*, int);
+template void intersect_object_closest_from<8>(const Scene&, const Accel&, uint32_t,
+                                               const RayPacket<8>&, vmask<8>, HitPacket<8>&,
+                                               uint32_t);
 template SurfacePacket<8> surface_at<8>(const Scene&, const RayPacket<8>&, const HitPacket<8>&,
                                         vmask<8>);
 #endif
@@ -1044,6 +1025,9 @@ template void intersect_closest_block<16>(const Scene&, const Accel&, const RayP
                                           const vmask<16>*, HitPacket<16>*, int);
 template void intersect_any_block<16>(const Scene&, const Accel&, const RayPacket<16>*,
                                       const vmask<16>*, vmask<16>*, int);
+template void intersect_object_closest_from<16>(const Scene&, const Accel&, uint32_t,
+                                                const RayPacket<16>&, vmask<16>, HitPacket<16>&,
+                                                uint32_t);
 template SurfacePacket<16> surface_at<16>(const Scene&, const RayPacket<16>&, const HitPacket<16>&,
                                           vmask<16>);
 #endif

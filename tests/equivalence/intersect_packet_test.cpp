@@ -20,6 +20,7 @@
 #include "support/ray_packets.h"
 #include "support/widths.h"
 #include "traverse/intersect_scalar.h"
+#include "traverse/intersect_stream.h"
 
 namespace raylane {
 namespace {
@@ -198,6 +199,35 @@ size_t any_block_mismatches(const Loaded& l, const std::vector<Ray>& rays,
     return bad;
 }
 
+/// The same through intersect_closest_stream, in streams of `stream_rays` rays (a partial one
+/// at the end).
+template <int W>
+size_t closest_stream_mismatches(const Loaded& l, const std::vector<Ray>& rays,
+                                 const std::vector<Hit>& want, size_t stream_rays = 4096) {
+    std::atomic<size_t> bad{0};
+    const size_t per_stream = stream_rays / W;
+    const size_t packets = (rays.size() + W - 1) / W;
+    tbb::parallel_for(size_t(0), (packets + per_stream - 1) / per_stream, [&](size_t b) {
+        std::vector<RayPacket<W>> p(per_stream);
+        const std::unique_ptr<vmask<W>[]> active(new vmask<W>[per_stream]);  // not vector<bool>
+        std::vector<HitPacket<W>> got(per_stream);
+        int count = 0;
+        for (size_t k = b * per_stream; k < std::min(packets, (b + 1) * per_stream); ++k, ++count)
+            p[size_t(count)] = make_packet<W>(rays, k * W, active[size_t(count)]);
+        intersect_closest_stream(l.scene, l.accel, p.data(), active.get(), got.data(), count);
+        for (int c = 0; c < count; ++c) {
+            const size_t k = b * per_stream + size_t(c);
+            for (int i = 0; i < W && k * W + i < rays.size(); ++i) {
+                const Hit g = get_hit(got[size_t(c)], i), w = want[k * W + i];
+                if (g.object != w.object || g.prim != w.prim || (w.hit() && g.t != w.t) ||
+                    (w.hit() && (g.uv.x != w.uv.x || g.uv.y != w.uv.y)))
+                    ++bad;
+            }
+        }
+    });
+    return bad;
+}
+
 /// The scalar path's answers for a ray set (the reference every packet form is held to).
 struct ScalarAnswers {
     std::vector<Hit> closest;
@@ -272,6 +302,36 @@ TYPED_TEST(IntersectPacket, BlocksMatchScalarOnTheBunny) {
 TYPED_TEST(IntersectPacket, BlocksMatchScalarOnEveryAnalyticShape) {
     constexpr int W = TypeParam::value;
     check_scene("builtin", closest_block_mismatches<W>, any_block_mismatches<W>);
+}
+
+/// Streams hold closest hits only (shadow rays are coherent: blocks); every ray set of a scene,
+/// in streams of 4096 rays and of 100 (lists shorter than a packet from the root on).
+void check_scene_streams(const std::string& name,
+                         size_t (*closest)(const Loaded&, const std::vector<Ray>&,
+                                           const std::vector<Hit>&, size_t),
+                         BvhBuild method = BvhBuild::median) {
+    const std::shared_ptr<Loaded> l = load(name, method);
+    if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
+    const RaySets& s = ray_sets(name, method);
+    size_t hits = 0;
+    for (const Hit& h : s.bounce_hits) hits += h.hit();
+    EXPECT_GT(hits, s.bounce.size() / 20) << "the bounce rays must hit something";
+    for (size_t stream_rays : {4096, 96}) {
+        EXPECT_EQ(closest(*l, s.camera, s.camera_hits, stream_rays), 0u) << "camera rays";
+        EXPECT_EQ(closest(*l, s.bounce, s.bounce_hits, stream_rays), 0u) << "bounce rays";
+    }
+}
+
+TYPED_TEST(IntersectPacket, StreamsMatchScalarOnTheDragon) {
+    check_scene_streams("dragon", closest_stream_mismatches<TypeParam::value>);
+}
+
+TYPED_TEST(IntersectPacket, StreamsMatchScalarOnTheBunny) {
+    check_scene_streams("bunny", closest_stream_mismatches<TypeParam::value>);
+}
+
+TYPED_TEST(IntersectPacket, StreamsMatchScalarOnEveryAnalyticShape) {
+    check_scene_streams("builtin", closest_stream_mismatches<TypeParam::value>);
 }
 
 /// The traversals make no assumption about the tree beyond its layout: through the SAH build

@@ -1,0 +1,387 @@
+// traverse: stream traversal (intersect_stream.h). The rays are stored once, as records of 32
+// bytes read a list's W rays at a time (gather_records8); the lists of ray numbers are the only
+// thing that moves between nodes. The node and triangle tests are the packet path's own
+// (slab_packet.h, triangle_packet.h), so a ray's answer is the scalar path's.
+#include "traverse/intersect_stream.h"
+
+#include <algorithm>
+#include <cstring>
+#include <new>
+#include <vector>
+
+#include "traverse/hit_update_packet.h"
+#include "traverse/intersect_packet.h"
+#include "traverse/slab_packet.h"
+#include "traverse/triangle_packet.h"
+
+namespace raylane {
+
+namespace {
+
+constexpr int stack_size = 64;  // as intersect_packet.cpp: a median tree is at most 32 deep
+
+/// 32-byte aligned storage that only grows (the thread's buffers, reused stream after stream).
+template <class T>
+struct AlignedArray {
+    T* data = nullptr;
+    size_t size = 0;
+    AlignedArray() = default;
+    AlignedArray(const AlignedArray&) = delete;
+    AlignedArray& operator=(const AlignedArray&) = delete;
+    ~AlignedArray() { ::operator delete(data, std::align_val_t(64)); }
+    void reserve(size_t n) {
+        if (n <= size) return;
+        ::operator delete(data, std::align_val_t(64));
+        data = static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64)));
+        size = n;
+    }
+};
+
+/// What a node test reads of a ray: 32 bytes, one gather_records8.
+struct SlabRecord {
+    float ox, oy, oz, t_min;
+    float ix, iy, iz, limit;  ///< inv_dir, and the t_limit of the ray's closest hit so far
+};
+/// What a leaf reads besides the SlabRecord: the direction, t_max and the closest hit so far.
+struct HitRecord {
+    float dx, dy, dz, t_max;
+    float t;
+    int32_t prim, object, unused;
+};
+static_assert(sizeof(SlabRecord) == 32 && sizeof(HitRecord) == 32);
+
+/// A stream's rays by ray number i = packet * W + lane, and room for the lists. One per thread.
+struct Stream {
+    AlignedArray<SlabRecord> slab;
+    AlignedArray<HitRecord> hit;
+    AlignedArray<float> u, v;
+    AlignedArray<int32_t> ids;
+    void reserve(size_t rays) {
+        slab.reserve(rays), hit.reserve(rays), u.reserve(rays), v.reserve(rays);
+        // each level of the two nested traversals holds at most two lists as long as its parent's
+        ids.reserve(2 * rays * (2 * stack_size + 1) + 64);
+    }
+};
+
+thread_local Stream stream;
+
+/// Lanes j .. j + W - 1 of a list of n ray numbers (ray 0 past the end) and the lanes in it.
+template <int W>
+void load_batch(const int32_t* list, int n, int j, vint<W>& idx, vmask<W>& lanes) {
+    const int k = std::min(W, n - j);
+    lanes = mask_from_bits<W>((1u << k) - 1u);
+    if (k == W) {
+        idx = load<W>(list + j);
+    } else {
+        alignas(64) int32_t tmp[W] = {};
+        std::memcpy(tmp, list + j, sizeof(int32_t) * static_cast<size_t>(k));
+        idx = load_aligned<W>(tmp);
+    }
+}
+
+template <int W>
+void gather_slab(const Stream& s, const vint<W>& idx, SlabPacket<W>& sr, vfloat<W>& t_min,
+                 vfloat<W>& limit) {
+    vfloat<W> f[8];
+    gather_records8<W>(reinterpret_cast<const float*>(s.slab.data), idx, f);
+    sr.org = {f[0], f[1], f[2]};
+    sr.inv_dir = {f[4], f[5], f[6]};
+    t_min = f[3];
+    limit = f[7];
+}
+
+/// A list's W rays as a packet (t_max: -1 in lanes past the list's end) with their hits so far.
+template <int W>
+void gather_rays(const Stream& s, const vint<W>& idx, vmask<W> lanes, RayPacket<W>& r,
+                 HitPacket<W>& h) {
+    vfloat<W> a[8], b[8];
+    gather_records8<W>(reinterpret_cast<const float*>(s.slab.data), idx, a);
+    gather_records8<W>(reinterpret_cast<const float*>(s.hit.data), idx, b);
+    r.org = {a[0], a[1], a[2]};
+    r.t_min = a[3];
+    r.dir = {b[0], b[1], b[2]};
+    r.t_max = select(lanes, b[3], vfloat<W>(-1.0f));
+    h.t = b[4];
+    h.prim = float_as_int(b[5]);
+    h.object = float_as_int(b[6]);
+    h.u = vfloat<W>(0.0f), h.v = vfloat<W>(0.0f);  // written back only where a hit wins
+}
+
+/// Writes back the hits of the lanes in `won` and the rays' new limits.
+template <int W>
+void scatter_hits(Stream& s, const vint<W>& idx, vmask<W> won, const RayPacket<W>& r,
+                  const HitPacket<W>& h) {
+    const vfloat<W> limit = t_limit(r, h);
+    for_each_active(won, [&](int i) {
+        const auto k = static_cast<size_t>(get(idx, i));
+        s.slab.data[k].limit = get(limit, i);
+        HitRecord& hr = s.hit.data[k];
+        hr.t = get(h.t, i), hr.prim = get(h.prim, i), hr.object = get(h.object, i);
+        s.u.data[k] = get(h.u, i), s.v.data[k] = get(h.v, i);
+    });
+}
+
+/// The stream traversal of one BVH by the rays of `list` (n of them), with free room for lists
+/// from `free_ids` on. The root's box is tested first. leaf(node, list, n, free) gets the rays
+/// that touch a leaf; small(node, list, n) may take over a list of at most W rays (true) or
+/// leave it to the stream (false). At an interior node the list is split into the rays that
+/// touch each child; the child that more rays enter first goes first, the other waits on the
+/// stack with its list. A ray whose limit has dropped since falls out at the next test.
+template <int W, class Leaf, class Small>
+void traverse_stream(const Bvh& bvh, const Stream& s, const int32_t* list, int n, int32_t* free_ids,
+                     Leaf&& leaf, Small&& small) {
+    if (bvh.nodes.empty() || n == 0) return;
+    const BvhNode* nodes = bvh.nodes.data();
+    auto box = [](const BvhNode& node, vec3& lo, vec3& hi) {
+        lo = vec3(node.lo[0], node.lo[1], node.lo[2]);
+        hi = vec3(node.hi[0], node.hi[1], node.hi[2]);
+    };
+    // the root
+    int32_t* root = free_ids;
+    int n_root = 0;
+    {
+        vec3 lo, hi;
+        box(nodes[0], lo, hi);
+        for (int j = 0; j < n; j += W) {
+            vint<W> idx;
+            vmask<W> lanes;
+            load_batch<W>(list, n, j, idx, lanes);
+            SlabPacket<W> sr;
+            vfloat<W> t_min, limit, t_near;
+            gather_slab<W>(s, idx, sr, t_min, limit);
+            n_root += compress_store(root + n_root, idx,
+                                     intersect_slab(sr, lo, hi, t_min, limit, t_near, lanes));
+        }
+    }
+    struct Entry {
+        uint32_t node;
+        int n;
+        int32_t* list;
+    };
+    Entry stack[stack_size];
+    int top = 0;
+    Entry e{0, n_root, root};
+    int32_t* free_top = root + n_root;
+    while (e.n > 0) {
+        const BvhNode& node = nodes[e.node];
+        if (node.is_leaf()) {
+            leaf(node, e.list, e.n, free_top);
+        } else if (!(e.n <= W && small(e.node, e.list, e.n))) {
+            // children: split the list
+            const uint32_t first = e.node + 1, second = node.index;
+            vec3 lo1, hi1, lo2, hi2;
+            box(nodes[first], lo1, hi1);
+            box(nodes[second], lo2, hi2);
+            int32_t* list_first = free_top;
+            int32_t* list_second = free_top + e.n;
+            int n_first = 0, n_second = 0, second_nearer = 0;
+            for (int j = 0; j < e.n; j += W) {
+                vint<W> idx;
+                vmask<W> lanes;
+                load_batch<W>(e.list, e.n, j, idx, lanes);
+                SlabPacket<W> sr;
+                vfloat<W> t_min, limit, near_first, near_second;
+                gather_slab<W>(s, idx, sr, t_min, limit);
+                const vmask<W> hit_first =
+                    intersect_slab(sr, lo1, hi1, t_min, limit, near_first, lanes);
+                const vmask<W> hit_second =
+                    intersect_slab(sr, lo2, hi2, t_min, limit, near_second, lanes);
+                n_first += compress_store(list_first + n_first, idx, hit_first);
+                n_second += compress_store(list_second + n_second, idx, hit_second);
+                const vmask<W> both = mask_and(hit_first, hit_second);
+                second_nearer += count(mask_and(both, near_second < near_first)) -
+                                 count(mask_and(both, near_first < near_second));
+            }
+            if (n_first > 0 && n_second > 0) {
+                if (second_nearer > 0) {
+                    stack[top++] = {first, n_first, list_first};
+                    e = {second, n_second, list_second};
+                } else {
+                    stack[top++] = {second, n_second, list_second};
+                    e = {first, n_first, list_first};
+                }
+                free_top = list_second + n_second;
+                continue;
+            }
+            if (n_first > 0 || n_second > 0) {
+                e = n_first > 0 ? Entry{first, n_first, list_first}
+                                : Entry{second, n_second, list_second};
+                free_top = e.list + e.n;
+                continue;
+            }
+        }
+        if (top == 0) break;
+        // the lists above the popped one belong to finished subtrees
+        e = stack[--top];
+        free_top = e.list + e.n;
+    }
+}
+
+/// Fills the stream from the packets (an inactive lane's limit is -infinity, so no test passes
+/// it) and writes the active lanes' ray numbers to `list`; returns how many there are.
+template <int W>
+int fill_stream(Stream& s, const RayPacket<W>* rays, const vmask<W>* active,
+                const HitPacket<W>* hits, int count, int32_t* list) {
+    int n = 0;
+    for (int p = 0; p < count; ++p) {
+        const RayPacket<W>& r = rays[p];
+        const SlabPacket<W> sr = make_slab_ray(r);
+        const vfloat<W> limit = select(active[p], t_limit(r, hits[p]), vfloat<W>(-infinity));
+        // the packet's fields as W-float rows, then one record per lane
+        alignas(64) float f[16][W];
+        const vfloat<W> rows[16] = {r.org.x,
+                                    r.org.y,
+                                    r.org.z,
+                                    r.t_min,
+                                    sr.inv_dir.x,
+                                    sr.inv_dir.y,
+                                    sr.inv_dir.z,
+                                    limit,
+                                    r.dir.x,
+                                    r.dir.y,
+                                    r.dir.z,
+                                    r.t_max,
+                                    hits[p].t,
+                                    int_as_float(hits[p].prim),
+                                    int_as_float(hits[p].object),
+                                    vfloat<W>(0.0f)};
+        for (int k = 0; k < 16; ++k) store_aligned(f[k], rows[k]);
+        for (int i = 0; i < W; ++i) {
+            const auto k = static_cast<size_t>(p * W + i);
+            float* slab = reinterpret_cast<float*>(&s.slab.data[k]);
+            float* hit = reinterpret_cast<float*>(&s.hit.data[k]);
+            for (int c = 0; c < 8; ++c) slab[c] = f[c][i], hit[c] = f[8 + c][i];
+        }
+        store(s.u.data + p * W, hits[p].u);
+        store(s.v.data + p * W, hits[p].v);
+        n += compress_store(list + n, vint<W>(p * W) + lane_index<W>(), active[p]);
+    }
+    return n;
+}
+
+/// A mesh's leaf for the rays of a list, W at a time.
+template <int W>
+void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, const BvhNode& leaf,
+                 const int32_t* list, int n) {
+    for (int j = 0; j < n; j += W) {
+        vint<W> idx;
+        vmask<W> lanes;
+        load_batch<W>(list, n, j, idx, lanes);
+        RayPacket<W> r;
+        HitPacket<W> h;
+        gather_rays<W>(s, idx, lanes, r, h);
+        const WatertightPacket<W> wr = make_watertight_ray(r, lanes);
+        vfloat<W> limit = t_limit(r, h);
+        vmask<W> won = mask_and(lanes, mask_not(lanes));
+        for (uint32_t k = leaf.index; k < leaf.index + leaf.count; ++k) {
+            const TriangleVerts& tv = mesh.verts[k];
+            vfloat<W> t(infinity), u(0.0f), v(0.0f);
+            const vmask<W> hit =
+                intersect_triangle(wr, tv.a, tv.b, tv.c, r.t_min, limit, t, u, v, lanes);
+            if (any(hit)) {
+                const uint32_t prim = mesh.bvh.prim_ids[k];
+                const vmask<W> win = better(t, object, prim, h, hit);
+                record(h, win, t, object, prim, u, v);
+                limit = t_limit(r, h);
+                won = mask_or(won, win);
+            }
+        }
+        if (any(won)) scatter_hits(s, idx, won, r, h);
+    }
+}
+
+/// Any object for the rays of a list, W at a time, through intersect_object_closest_from (a
+/// mesh from node `start`, which the rays touch, or from its root).
+template <int W>
+void stream_object(Stream& s, const Scene& scene, const Accel& accel, uint32_t object,
+                   const int32_t* list, int n, uint32_t start) {
+    for (int j = 0; j < n; j += W) {
+        vint<W> idx;
+        vmask<W> lanes;
+        load_batch<W>(list, n, j, idx, lanes);
+        RayPacket<W> r;
+        HitPacket<W> h;
+        gather_rays<W>(s, idx, lanes, r, h);
+        const vfloat<W> t_before = h.t;
+        const vint<W> prim_before = h.prim, object_before = h.object;
+        intersect_object_closest_from(scene, accel, object, r, lanes, h, start);
+        const vmask<W> same_id = mask_and(eq(h.prim, prim_before), eq(h.object, object_before));
+        const vmask<W> won = mask_and(lanes, mask_or(ne(h.t, t_before), mask_not(same_id)));
+        if (any(won)) scatter_hits(s, idx, won, r, h);
+    }
+}
+
+}  // namespace
+
+template <int W>
+void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+                              const vmask<W>* active, HitPacket<W>* hits, int count) {
+    for (int p = 0; p < count; ++p) hits[p] = HitPacket<W>{};
+    if (count <= 0) return;
+    for (uint32_t object : accel.unbounded)
+        for (int p = 0; p < count; ++p)
+            if (any(active[p]))
+                intersect_object_closest_from(scene, accel, object, rays[p], active[p], hits[p], 0);
+    if (accel.top.nodes.empty()) return;
+    Stream& s = stream;
+    const auto n_rays = static_cast<size_t>(count) * W;
+    s.reserve(n_rays);
+    int32_t* list = s.ids.data;
+    const int n = fill_stream(s, rays, active, hits, count, list);
+    auto never = [](uint32_t, const int32_t*, int) { return false; };
+    traverse_stream<W>(
+        accel.top, s, list, n, list + n,
+        [&](const BvhNode& top_leaf, const int32_t* tl, int tn, int32_t* free_ids) {
+            for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
+                const uint32_t object = accel.top.prim_ids[k];
+                const Object& o = scene.objects[object];
+                if (o.kind != ShapeKind::mesh) {
+                    stream_object<W>(s, scene, accel, object, tl, tn, 0);
+                    continue;
+                }
+                const MeshAccel& mesh = accel.meshes[o.shape];
+                traverse_stream<W>(
+                    mesh.bvh, s, tl, tn, free_ids,
+                    [&](const BvhNode& leaf, const int32_t* ll, int ln, int32_t*) {
+                        stream_leaf<W>(s, mesh, object, leaf, ll, ln);
+                    },
+                    [&](uint32_t node, const int32_t* ll, int ln) {
+                        stream_object<W>(s, scene, accel, object, ll, ln, node);
+                        return true;
+                    });
+            }
+        },
+        never);
+    // the hits back into the packets
+    for (int p = 0; p < count; ++p) {
+        alignas(64) float t[W];
+        alignas(64) int32_t prim[W], object[W];
+        for (int i = 0; i < W; ++i) {
+            const HitRecord& hr = s.hit.data[p * W + i];
+            t[i] = hr.t, prim[i] = hr.prim, object[i] = hr.object;
+        }
+        hits[p].t = load_aligned<W>(t);
+        hits[p].prim = load_aligned<W>(prim);
+        hits[p].object = load_aligned<W>(object);
+        hits[p].u = load<W>(s.u.data + p * W);
+        hits[p].v = load<W>(s.v.data + p * W);
+    }
+}
+
+// Instantiations: W = 1 and every width this build runs (as intersect_packet.cpp).
+template void intersect_closest_stream<1>(const Scene&, const Accel&, const RayPacket<1>*,
+                                          const vmask<1>*, HitPacket<1>*, int);
+#if XSIMD_WITH_SSE2
+template void intersect_closest_stream<4>(const Scene&, const Accel&, const RayPacket<4>*,
+                                          const vmask<4>*, HitPacket<4>*, int);
+#endif
+#if XSIMD_WITH_AVX2
+template void intersect_closest_stream<8>(const Scene&, const Accel&, const RayPacket<8>*,
+                                          const vmask<8>*, HitPacket<8>*, int);
+#endif
+#if XSIMD_WITH_AVX512F
+template void intersect_closest_stream<16>(const Scene&, const Accel&, const RayPacket<16>*,
+                                           const vmask<16>*, HitPacket<16>*, int);
+#endif
+
+}  // namespace raylane
