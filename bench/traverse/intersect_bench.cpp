@@ -305,26 +305,33 @@ void bench_block(benchmark::State& state, std::string scene, std::string set, in
     });
 }
 
-/// Streams of stream_rays consecutive rays through intersect_closest_stream (closest hits only:
-/// shadow rays are coherent, the blocks' case).
+/// Streams of stream_rays consecutive rays through intersect_closest_stream /
+/// intersect_any_stream.
 template <int W>
 void bench_stream(benchmark::State& state, std::string scene, std::string set, int threads) {
     Workload* w = workload(scene);
     if (!w) return state.SkipWithError("scene or model not found");
     const std::vector<Ray>& rays = rays_of(*w, set);
     const RaySoa& soa = soa_of(*w, set);
+    const bool any_hit = set == "shadow";
     run(
         state, rays, threads,
         [&](size_t first, size_t last) {
             thread_local std::vector<RayPacket<W>> p;
-            thread_local std::vector<vmask<W>> active;
+            thread_local std::vector<vmask<W>> active, occluded;
             thread_local std::vector<HitPacket<W>> hits;
             const size_t count = (last - first) / W;
-            p.resize(count), active.resize(count), hits.resize(count);
+            p.resize(count), active.resize(count), occluded.resize(count), hits.resize(count);
             for (size_t k = 0; k < count; ++k) p[k] = load_packet<W>(soa, first + k * W, active[k]);
-            intersect_closest_stream(w->scene, w->accel, p.data(), active.data(), hits.data(),
+            if (any_hit) {
+                intersect_any_stream(w->scene, w->accel, p.data(), active.data(), occluded.data(),
                                      int(count));
-            benchmark::DoNotOptimize(hits[0]);
+                benchmark::DoNotOptimize(occluded[0]);
+            } else {
+                intersect_closest_stream(w->scene, w->accel, p.data(), active.data(), hits.data(),
+                                         int(count));
+                benchmark::DoNotOptimize(hits[0]);
+            }
         },
         stream_rays);
 }
@@ -462,13 +469,11 @@ void register_all() {
                 if constexpr (width_supported<16>) register_packet<16>(scene, set, threads);
                 if constexpr (width_supported<8>) register_block<8>(scene, set, threads);
                 if constexpr (width_supported<16>) register_block<16>(scene, set, threads);
-                // streams of incoherent rays at the widest width (closest hits only)
-                if (set != "shadow") {
-                    if constexpr (width_supported<16>)
-                        register_stream<16>(scene, set, threads);
-                    else if constexpr (width_supported<8>)
-                        register_stream<8>(scene, set, threads);
-                }
+                // streams at the widest width
+                if constexpr (width_supported<16>)
+                    register_stream<16>(scene, set, threads);
+                else if constexpr (width_supported<8>)
+                    register_stream<8>(scene, set, threads);
                 // the widest packets and blocks again through the SAH build (a comparison
                 // option: the rays are the same, the tree is not the report's)
                 if constexpr (width_supported<16>) {

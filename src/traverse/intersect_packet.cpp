@@ -213,7 +213,8 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPac
 // for the first active lane is visited first, the other pushed with its lanes (as bits); t_max
 // does not change, so when popped its lanes are those that have not found a hit yet.
 template <int W>
-vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vmask<W> active) {
+vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vmask<W> active,
+                            uint32_t start) {
     vmask<W> found = mask_and(active, mask_not(active));
     if (mesh.bvh.nodes.empty()) return found;
     const WatertightPacket<W> wr = make_watertight_ray(rays, active);
@@ -225,14 +226,16 @@ vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vma
     vfloat<W> t_root;
     const vec3 root_lo(nodes[0].lo[0], nodes[0].lo[1], nodes[0].lo[2]);
     const vec3 root_hi(nodes[0].hi[0], nodes[0].hi[1], nodes[0].hi[2]);
-    vmask<W> m = intersect_slab(sr, root_lo, root_hi, rays.t_min, rays.t_max, t_root, active);
+    vmask<W> m = start != 0
+                     ? active
+                     : intersect_slab(sr, root_lo, root_hi, rays.t_min, rays.t_max, t_root, active);
     struct Entry {
         uint32_t node;
         uint32_t lanes;
     };
     Entry stack[stack_size];
     int top = 0;
-    uint32_t node_index = 0;
+    uint32_t node_index = start;
     while (any(m)) {  // m: the lanes that touch node_index's box and have not found a hit
         const BvhNode& node = nodes[node_index];
         if (node.is_leaf()) {
@@ -303,11 +306,11 @@ void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t o
 
 template <int W>
 vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t object_index,
-                              const RayPacket<W>& rays, vmask<W> active) {
+                              const RayPacket<W>& rays, vmask<W> active, uint32_t start = 0) {
     const Object& object = scene.objects[object_index];
     if (!object.casts_shadows) return vmask<W>(false);
     if (object.kind == ShapeKind::mesh)
-        return intersect_mesh_any(accel.meshes[object.shape], rays, active);
+        return intersect_mesh_any(accel.meshes[object.shape], rays, active, start);
     const vfloat<W> t = intersect_analytic(scene, object, to_object_space(object, rays), active);
     return mask_and(active, t < rays.t_max);
 }
@@ -320,6 +323,12 @@ void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint3
                                    uint32_t start) {
     intersect_object_closest(scene, accel, object, rays, active, hit,
                              static_cast<vint<W>*>(nullptr), start);
+}
+
+template <int W>
+vmask<W> intersect_object_any_from(const Scene& scene, const Accel& accel, uint32_t object,
+                                   const RayPacket<W>& rays, vmask<W> active, uint32_t start) {
+    return intersect_object_any(scene, accel, object, rays, active, start);
 }
 
 template <int W>
@@ -987,6 +996,8 @@ template void intersect_any_block<1>(const Scene&, const Accel&, const RayPacket
 template void intersect_object_closest_from<1>(const Scene&, const Accel&, uint32_t,
                                                const RayPacket<1>&, vmask<1>, HitPacket<1>&,
                                                uint32_t);
+template vmask<1> intersect_object_any_from<1>(const Scene&, const Accel&, uint32_t,
+                                               const RayPacket<1>&, vmask<1>, uint32_t);
 template SurfacePacket<1> surface_at<1>(const Scene&, const RayPacket<1>&, const HitPacket<1>&,
                                         vmask<1>);
 #if XSIMD_WITH_SSE2
@@ -1000,6 +1011,8 @@ template void intersect_any_block<4>(const Scene&, const Accel&, const RayPacket
 template void intersect_object_closest_from<4>(const Scene&, const Accel&, uint32_t,
                                                const RayPacket<4>&, vmask<4>, HitPacket<4>&,
                                                uint32_t);
+template vmask<4> intersect_object_any_from<4>(const Scene&, const Accel&, uint32_t,
+                                               const RayPacket<4>&, vmask<4>, uint32_t);
 template SurfacePacket<4> surface_at<4>(const Scene&, const RayPacket<4>&, const HitPacket<4>&,
                                         vmask<4>);
 #endif
@@ -1014,6 +1027,8 @@ template void intersect_any_block<8>(const Scene&, const Accel&, const RayPacket
 template void intersect_object_closest_from<8>(const Scene&, const Accel&, uint32_t,
                                                const RayPacket<8>&, vmask<8>, HitPacket<8>&,
                                                uint32_t);
+template vmask<8> intersect_object_any_from<8>(const Scene&, const Accel&, uint32_t,
+                                               const RayPacket<8>&, vmask<8>, uint32_t);
 template SurfacePacket<8> surface_at<8>(const Scene&, const RayPacket<8>&, const HitPacket<8>&,
                                         vmask<8>);
 #endif
@@ -1028,6 +1043,8 @@ template void intersect_any_block<16>(const Scene&, const Accel&, const RayPacke
 template void intersect_object_closest_from<16>(const Scene&, const Accel&, uint32_t,
                                                 const RayPacket<16>&, vmask<16>, HitPacket<16>&,
                                                 uint32_t);
+template vmask<16> intersect_object_any_from<16>(const Scene&, const Accel&, uint32_t,
+                                                 const RayPacket<16>&, vmask<16>, uint32_t);
 template SurfacePacket<16> surface_at<16>(const Scene&, const RayPacket<16>&, const HitPacket<16>&,
                                           vmask<16>);
 #endif

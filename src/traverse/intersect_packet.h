@@ -47,6 +47,12 @@ void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint3
                                    const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
                                    uint32_t start);
 
+/// One object's part of intersect_any: the active lanes it occludes (none when it casts no
+/// shadows). A mesh from node `start` of its BVH, as intersect_object_closest_from.
+template <int W>
+vmask<W> intersect_object_any_from(const Scene& scene, const Accel& accel, uint32_t object,
+                                   const RayPacket<W>& rays, vmask<W> active, uint32_t start);
+
 /// Everything shading needs about W hits, in world space (the twin of SurfacePoint).
 template <int W>
 struct SurfacePacket {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <vector>
 
@@ -225,35 +226,33 @@ int fill_stream(Stream& s, const RayPacket<W>* rays, const vmask<W>* active,
     int n = 0;
     for (int p = 0; p < count; ++p) {
         const RayPacket<W>& r = rays[p];
+        const HitPacket<W> hit = hits ? hits[p] : HitPacket<W>{};
         const SlabPacket<W> sr = make_slab_ray(r);
-        const vfloat<W> limit = select(active[p], t_limit(r, hits[p]), vfloat<W>(-infinity));
-        // the packet's fields as W-float rows, then one record per lane
-        alignas(64) float f[16][W];
-        const vfloat<W> rows[16] = {r.org.x,
-                                    r.org.y,
-                                    r.org.z,
-                                    r.t_min,
-                                    sr.inv_dir.x,
-                                    sr.inv_dir.y,
-                                    sr.inv_dir.z,
-                                    limit,
-                                    r.dir.x,
-                                    r.dir.y,
-                                    r.dir.z,
-                                    r.t_max,
-                                    hits[p].t,
-                                    int_as_float(hits[p].prim),
-                                    int_as_float(hits[p].object),
-                                    vfloat<W>(0.0f)};
-        for (int k = 0; k < 16; ++k) store_aligned(f[k], rows[k]);
+        const vfloat<W> limit = select(active[p], t_limit(r, hit), vfloat<W>(-infinity));
+        // the packet's fields as rows of W floats, then one record per lane
+        const vfloat<W> slab_fields[8] = {r.org.x,      r.org.y,      r.org.z,      r.t_min,
+                                          sr.inv_dir.x, sr.inv_dir.y, sr.inv_dir.z, limit};
+        const vfloat<W> hit_fields[8] = {r.dir.x,
+                                         r.dir.y,
+                                         r.dir.z,
+                                         r.t_max,
+                                         hit.t,
+                                         int_as_float(hit.prim),
+                                         int_as_float(hit.object),
+                                         vfloat<W>(0.0f)};
+        alignas(64) float rows[16][W];
+        for (int c = 0; c < 8; ++c) {
+            store_aligned(rows[c], slab_fields[c]);
+            store_aligned(rows[8 + c], hit_fields[c]);
+        }
         for (int i = 0; i < W; ++i) {
             const auto k = static_cast<size_t>(p * W + i);
-            float* slab = reinterpret_cast<float*>(&s.slab.data[k]);
-            float* hit = reinterpret_cast<float*>(&s.hit.data[k]);
-            for (int c = 0; c < 8; ++c) slab[c] = f[c][i], hit[c] = f[8 + c][i];
+            float* slab_record = reinterpret_cast<float*>(&s.slab.data[k]);
+            float* hit_record = reinterpret_cast<float*>(&s.hit.data[k]);
+            for (int c = 0; c < 8; ++c) slab_record[c] = rows[c][i], hit_record[c] = rows[8 + c][i];
         }
-        store(s.u.data + p * W, hits[p].u);
-        store(s.v.data + p * W, hits[p].v);
+        store(s.u.data + p * W, hit.u);
+        store(s.v.data + p * W, hit.v);
         n += compress_store(list + n, vint<W>(p * W) + lane_index<W>(), active[p]);
     }
     return n;
@@ -308,6 +307,62 @@ void stream_object(Stream& s, const Scene& scene, const Accel& accel, uint32_t o
         const vmask<W> same_id = mask_and(eq(h.prim, prim_before), eq(h.object, object_before));
         const vmask<W> won = mask_and(lanes, mask_or(ne(h.t, t_before), mask_not(same_id)));
         if (any(won)) scatter_hits(s, idx, won, r, h);
+    }
+}
+
+/// Marks the lanes in `found` occluded: their limit drops to -infinity (no test passes them
+/// any more) and their hit record's t to 0.
+template <int W>
+void mark_occluded(Stream& s, const vint<W>& idx, vmask<W> found) {
+    for_each_active(found, [&](int i) {
+        const auto k = static_cast<size_t>(get(idx, i));
+        s.slab.data[k].limit = -infinity;
+        s.hit.data[k].t = 0.0f;
+    });
+}
+
+/// The any-hit leaf: the open rays of a list against a mesh leaf's triangles, W at a time.
+template <int W>
+void stream_leaf_any(Stream& s, const MeshAccel& mesh, const BvhNode& leaf, const int32_t* list,
+                     int n) {
+    for (int j = 0; j < n; j += W) {
+        vint<W> idx;
+        vmask<W> lanes;
+        load_batch<W>(list, n, j, idx, lanes);
+        RayPacket<W> r;
+        HitPacket<W> h;
+        gather_rays<W>(s, idx, lanes, r, h);
+        const vmask<W> open = mask_and(lanes, h.t == vfloat<W>(infinity));
+        if (none(open)) continue;
+        const WatertightPacket<W> wr = make_watertight_ray(r, open);
+        vmask<W> found = mask_and(open, mask_not(open));
+        for (uint32_t k = leaf.index; k < leaf.index + leaf.count; ++k) {
+            const vmask<W> m = mask_andnot(open, found);
+            if (none(m)) break;
+            const TriangleVerts& tv = mesh.verts[k];
+            vfloat<W> t(infinity), u(0.0f), v(0.0f);
+            found = mask_or(found,
+                            intersect_triangle(wr, tv.a, tv.b, tv.c, r.t_min, r.t_max, t, u, v, m));
+        }
+        if (any(found)) mark_occluded<W>(s, idx, found);
+    }
+}
+
+/// Any object for the open rays of a list, W at a time (a mesh from node `start`).
+template <int W>
+void stream_object_any(Stream& s, const Scene& scene, const Accel& accel, uint32_t object,
+                       const int32_t* list, int n, uint32_t start) {
+    for (int j = 0; j < n; j += W) {
+        vint<W> idx;
+        vmask<W> lanes;
+        load_batch<W>(list, n, j, idx, lanes);
+        RayPacket<W> r;
+        HitPacket<W> h;
+        gather_rays<W>(s, idx, lanes, r, h);
+        const vmask<W> open = mask_and(lanes, h.t == vfloat<W>(infinity));
+        if (none(open)) continue;
+        const vmask<W> found = intersect_object_any_from(scene, accel, object, r, open, start);
+        if (any(found)) mark_occluded<W>(s, idx, found);
     }
 }
 
@@ -368,20 +423,80 @@ void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayP
     }
 }
 
+template <int W>
+void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+                          const vmask<W>* active, vmask<W>* occluded, int count) {
+    for (int p = 0; p < count; ++p) {
+        occluded[p] = mask_and(active[p], mask_not(active[p]));
+        for (uint32_t object : accel.unbounded) {
+            const vmask<W> open = mask_andnot(active[p], occluded[p]);
+            if (any(open))
+                occluded[p] = mask_or(
+                    occluded[p], intersect_object_any_from(scene, accel, object, rays[p], open, 0));
+        }
+    }
+    if (count <= 0 || accel.top.nodes.empty()) return;
+    Stream& s = stream;
+    s.reserve(static_cast<size_t>(count) * W);
+    std::unique_ptr<vmask<W>[]> open(new vmask<W>[static_cast<size_t>(count)]);
+    for (int p = 0; p < count; ++p) open[p] = mask_andnot(active[p], occluded[p]);
+    int32_t* list = s.ids.data;
+    const int n = fill_stream<W>(s, rays, open.get(), nullptr, count, list);
+    auto never = [](uint32_t, const int32_t*, int) { return false; };
+    traverse_stream<W>(
+        accel.top, s, list, n, list + n,
+        [&](const BvhNode& top_leaf, const int32_t* tl, int tn, int32_t* free_ids) {
+            for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
+                const uint32_t object = accel.top.prim_ids[k];
+                const Object& o = scene.objects[object];
+                if (!o.casts_shadows) continue;
+                if (o.kind != ShapeKind::mesh) {
+                    stream_object_any<W>(s, scene, accel, object, tl, tn, 0);
+                    continue;
+                }
+                const MeshAccel& mesh = accel.meshes[o.shape];
+                traverse_stream<W>(
+                    mesh.bvh, s, tl, tn, free_ids,
+                    [&](const BvhNode& leaf, const int32_t* ll, int ln, int32_t*) {
+                        stream_leaf_any<W>(s, mesh, leaf, ll, ln);
+                    },
+                    [&](uint32_t node, const int32_t* ll, int ln) {
+                        stream_object_any<W>(s, scene, accel, object, ll, ln, node);
+                        return true;
+                    });
+            }
+        },
+        never);
+    // the occluded rays back into the packets' masks
+    for (int p = 0; p < count; ++p) {
+        uint32_t b = 0;
+        for (int i = 0; i < W; ++i) b |= uint32_t(s.hit.data[p * W + i].t == 0.0f) << i;
+        occluded[p] = mask_or(occluded[p], mask_and(open[p], mask_from_bits<W>(b)));
+    }
+}
+
 // Instantiations: W = 1 and every width this build runs (as intersect_packet.cpp).
 template void intersect_closest_stream<1>(const Scene&, const Accel&, const RayPacket<1>*,
                                           const vmask<1>*, HitPacket<1>*, int);
+template void intersect_any_stream<1>(const Scene&, const Accel&, const RayPacket<1>*,
+                                      const vmask<1>*, vmask<1>*, int);
 #if XSIMD_WITH_SSE2
 template void intersect_closest_stream<4>(const Scene&, const Accel&, const RayPacket<4>*,
                                           const vmask<4>*, HitPacket<4>*, int);
+template void intersect_any_stream<4>(const Scene&, const Accel&, const RayPacket<4>*,
+                                      const vmask<4>*, vmask<4>*, int);
 #endif
 #if XSIMD_WITH_AVX2
 template void intersect_closest_stream<8>(const Scene&, const Accel&, const RayPacket<8>*,
                                           const vmask<8>*, HitPacket<8>*, int);
+template void intersect_any_stream<8>(const Scene&, const Accel&, const RayPacket<8>*,
+                                      const vmask<8>*, vmask<8>*, int);
 #endif
 #if XSIMD_WITH_AVX512F
 template void intersect_closest_stream<16>(const Scene&, const Accel&, const RayPacket<16>*,
                                            const vmask<16>*, HitPacket<16>*, int);
+template void intersect_any_stream<16>(const Scene&, const Accel&, const RayPacket<16>*,
+                                       const vmask<16>*, vmask<16>*, int);
 #endif
 
 }  // namespace raylane

@@ -19,4 +19,11 @@ template <int W>
 void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
                               const vmask<W>* active, HitPacket<W>* hits, int count);
 
+/// intersect_any for `count` packets by the same stream traversal: occluded[p] receives the
+/// lanes of packet p that hit anything in (t_min, t_max). A ray leaves every list once it is
+/// occluded.
+template <int W>
+void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+                          const vmask<W>* active, vmask<W>* occluded, int count);
+
 }  // namespace raylane

@@ -228,6 +228,30 @@ size_t closest_stream_mismatches(const Loaded& l, const std::vector<Ray>& rays,
     return bad;
 }
 
+template <int W>
+size_t any_stream_mismatches(const Loaded& l, const std::vector<Ray>& rays,
+                             const std::vector<uint8_t>& want, size_t stream_rays = 4096) {
+    std::atomic<size_t> bad{0};
+    const size_t per_stream = stream_rays / W;
+    const size_t packets = (rays.size() + W - 1) / W;
+    tbb::parallel_for(size_t(0), (packets + per_stream - 1) / per_stream, [&](size_t b) {
+        std::vector<RayPacket<W>> p(per_stream);
+        const std::unique_ptr<vmask<W>[]> active(new vmask<W>[per_stream]),
+            got(new vmask<W>[per_stream]);
+        int count = 0;
+        for (size_t k = b * per_stream; k < std::min(packets, (b + 1) * per_stream); ++k, ++count)
+            p[size_t(count)] = make_packet<W>(rays, k * W, active[size_t(count)]);
+        intersect_any_stream(l.scene, l.accel, p.data(), active.get(), got.get(), count);
+        for (int c = 0; c < count; ++c) {
+            const size_t k = b * per_stream + size_t(c);
+            const uint32_t g = bits(got[size_t(c)]);
+            for (int i = 0; i < W && k * W + i < rays.size(); ++i)
+                if (((g >> i) & 1u) != want[k * W + i]) ++bad;
+        }
+    });
+    return bad;
+}
+
 /// The scalar path's answers for a ray set (the reference every packet form is held to).
 struct ScalarAnswers {
     std::vector<Hit> closest;
@@ -304,34 +328,45 @@ TYPED_TEST(IntersectPacket, BlocksMatchScalarOnEveryAnalyticShape) {
     check_scene("builtin", closest_block_mismatches<W>, any_block_mismatches<W>);
 }
 
-/// Streams hold closest hits only (shadow rays are coherent: blocks); every ray set of a scene,
-/// in streams of 4096 rays and of 100 (lists shorter than a packet from the root on).
-void check_scene_streams(const std::string& name,
-                         size_t (*closest)(const Loaded&, const std::vector<Ray>&,
-                                           const std::vector<Hit>&, size_t),
-                         BvhBuild method = BvhBuild::median) {
+/// Streams on every ray set of a scene, also the bounce rays as occlusion queries (incoherent
+/// shadow rays), in streams of 4096 rays and of 96 (lists shorter than a packet from the root
+/// on).
+template <int W>
+void check_scene_streams(const std::string& name, BvhBuild method = BvhBuild::median) {
     const std::shared_ptr<Loaded> l = load(name, method);
     if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
     const RaySets& s = ray_sets(name, method);
-    size_t hits = 0;
+    std::vector<uint8_t> bounce_blocked(s.bounce.size());
+    tbb::parallel_for(size_t(0), s.bounce.size(), [&](size_t i) {
+        bounce_blocked[i] = intersect_any(l->scene, l->accel, s.bounce[i]);
+    });
+    size_t hits = 0, blocked = 0;
     for (const Hit& h : s.bounce_hits) hits += h.hit();
+    for (uint8_t b : s.shadow_blocked) blocked += b;
     EXPECT_GT(hits, s.bounce.size() / 20) << "the bounce rays must hit something";
+    EXPECT_GT(blocked, s.shadow.size() / 100) << "some shadow rays must be blocked";
     for (size_t stream_rays : {4096, 96}) {
-        EXPECT_EQ(closest(*l, s.camera, s.camera_hits, stream_rays), 0u) << "camera rays";
-        EXPECT_EQ(closest(*l, s.bounce, s.bounce_hits, stream_rays), 0u) << "bounce rays";
+        EXPECT_EQ(closest_stream_mismatches<W>(*l, s.camera, s.camera_hits, stream_rays), 0u)
+            << "camera rays";
+        EXPECT_EQ(closest_stream_mismatches<W>(*l, s.bounce, s.bounce_hits, stream_rays), 0u)
+            << "bounce rays";
+        EXPECT_EQ(any_stream_mismatches<W>(*l, s.shadow, s.shadow_blocked, stream_rays), 0u)
+            << "shadow rays";
+        EXPECT_EQ(any_stream_mismatches<W>(*l, s.bounce, bounce_blocked, stream_rays), 0u)
+            << "bounce rays as occlusion queries";
     }
 }
 
 TYPED_TEST(IntersectPacket, StreamsMatchScalarOnTheDragon) {
-    check_scene_streams("dragon", closest_stream_mismatches<TypeParam::value>);
+    check_scene_streams<TypeParam::value>("dragon");
 }
 
 TYPED_TEST(IntersectPacket, StreamsMatchScalarOnTheBunny) {
-    check_scene_streams("bunny", closest_stream_mismatches<TypeParam::value>);
+    check_scene_streams<TypeParam::value>("bunny");
 }
 
 TYPED_TEST(IntersectPacket, StreamsMatchScalarOnEveryAnalyticShape) {
-    check_scene_streams("builtin", closest_stream_mismatches<TypeParam::value>);
+    check_scene_streams<TypeParam::value>("builtin");
 }
 
 /// The traversals make no assumption about the tree beyond its layout: through the SAH build
@@ -342,6 +377,7 @@ TYPED_TEST(IntersectPacket, PacketsAndBlocksMatchScalarThroughTheSahBuild) {
     check_scene("dragon", closest_mismatches<W>, any_mismatches<W>, BvhBuild::sah);
     check_scene("dragon", closest_block_mismatches<W>, any_block_mismatches<W>, BvhBuild::sah);
     check_scene("builtin", closest_block_mismatches<W>, any_block_mismatches<W>, BvhBuild::sah);
+    check_scene_streams<W>("dragon", BvhBuild::sah);
     const std::shared_ptr<Loaded> median = load("dragon");
     if (!median) return;
     const RaySets &a = ray_sets("dragon", BvhBuild::median), &b = ray_sets("dragon", BvhBuild::sah);
@@ -382,6 +418,10 @@ TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
     EXPECT_EQ(any_mismatches<W>(*l, rays, want.blocked), 0u);
     EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want.closest), 0u);
     EXPECT_EQ(any_block_mismatches<W>(*l, rays, want.blocked), 0u);
+    for (size_t stream_rays : {4096, 32}) {
+        EXPECT_EQ(closest_stream_mismatches<W>(*l, rays, want.closest, stream_rays), 0u);
+        EXPECT_EQ(any_stream_mismatches<W>(*l, rays, want.blocked, stream_rays), 0u);
+    }
 }
 
 /// The camera's rays reversed, searching behind their origin (t in (-1e4, 0)): block culling
@@ -406,6 +446,8 @@ TYPED_TEST(IntersectPacket, BlocksHandleNegativeIntervals) {
         EXPECT_GT(want.hits, rays.size() / 4) << name;
         EXPECT_EQ(closest_block_mismatches<W>(*l, rays, want.closest), 0u) << name;
         EXPECT_EQ(any_block_mismatches<W>(*l, rays, want.blocked), 0u) << name;
+        EXPECT_EQ(closest_stream_mismatches<W>(*l, rays, want.closest), 0u) << name;
+        EXPECT_EQ(any_stream_mismatches<W>(*l, rays, want.blocked), 0u) << name;
     }
 }
 
@@ -445,14 +487,20 @@ TYPED_TEST(IntersectPacket, BlocksWithInfiniteOrHugeDirectionsMatchScalar) {
             HitPacket<W> got[per_block];
             for (int c = 0; c < per_block; ++c)
                 p[c] = make_packet<W>(rays, b + size_t(c) * W, active[c]);
+            HitPacket<W> streamed[per_block];
+            vmask<W> stream_occluded[per_block] = {};
             intersect_closest_block(l.scene, l.accel, p, active, got, per_block);
             intersect_any_block(l.scene, l.accel, p, active, occluded, per_block);
+            intersect_closest_stream(l.scene, l.accel, p, active, streamed, per_block);
+            intersect_any_stream(l.scene, l.accel, p, active, stream_occluded, per_block);
             for (int c = 0; c < per_block; ++c) {
                 for (int i = 0; i < W; ++i) {
                     const size_t k = b + size_t(c) * W + size_t(i);
-                    const Hit g = get_hit(got[c], i), w = want.closest[k];
-                    bad += g.prim != w.prim || (w.hit() && g.t != w.t);
+                    const Hit w = want.closest[k];
+                    for (const Hit& g : {get_hit(got[c], i), get_hit(streamed[c], i)})
+                        bad += g.prim != w.prim || (w.hit() && g.t != w.t);
                     bad += ((bits(occluded[c]) >> i) & 1u) != want.blocked[k];
+                    bad += ((bits(stream_occluded[c]) >> i) & 1u) != want.blocked[k];
                 }
             }
         }

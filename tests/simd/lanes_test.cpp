@@ -101,6 +101,26 @@ TYPED_TEST(LanesTest, GatherReadsTheIndexedElements) {
     }
 }
 
+TYPED_TEST(LanesTest, GatherRecords8ReadsWholeRecordsInLaneOrder) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(3);
+    alignas(64) float table[41 * 8];
+    for (float& v : table) v = std::bit_cast<float>(static_cast<uint32_t>(rng()));
+    for (int r = 0; r < rounds; ++r) {
+        std::array<int32_t, W> idx;
+        for (int32_t& i : idx) i = static_cast<int32_t>(rng() % 41);
+        if (r == 0) idx.fill(7);  // every lane the same record
+        vfloat<W> out[8];
+        gather_records8<W>(table, load<W>(idx.data()), out);
+        for (int k = 0; k < 8; ++k) {
+            const auto got = lanes_of<W>(out[k]);
+            for (int l = 0; l < W; ++l)
+                ASSERT_EQ(bits_of(got[l]), bits_of(table[8 * idx[l] + k]))
+                    << "field " << k << ", lane " << l;
+        }
+    }
+}
+
 // ---- mask queries ---------------------------------------------------------------------------
 
 TYPED_TEST(LanesTest, BitsRoundTripThroughMasks) {
