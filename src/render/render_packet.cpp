@@ -5,6 +5,7 @@
 #include <cassert>
 #include <chrono>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "core/rng.h"
@@ -16,6 +17,7 @@
 #include "shade/shade_packet.h"
 #include "simd/hash.h"
 #include "traverse/intersect_packet.h"
+#include "traverse/intersect_stream.h"
 
 namespace raylane {
 namespace {
@@ -125,68 +127,101 @@ struct TileBuffers {
     float acc_r[max_slots], acc_g[max_slots], acc_b[max_slots];
 };
 
+/// Packets for a whole queue (the stream traversals take every ray of a pass at once): a
+/// thread's, grown on the first tiles, then reused.
+template <int W>
+struct QueuePackets {
+    std::vector<RayPacket<W>> rays;
+    std::vector<HitPacket<W>> hits;
+    std::unique_ptr<vmask<W>[]> active, occluded;  // (vector<bool> at W = 1)
+    size_t capacity = 0;
+    void reserve(size_t packets) {
+        if (packets <= capacity) return;
+        rays.resize(packets), hits.resize(packets);
+        active.reset(new vmask<W>[packets]);
+        occluded.reset(new vmask<W>[packets]);
+        capacity = packets;
+    }
+};
+template <int W>
+QueuePackets<W>& queue_packets() {
+    thread_local QueuePackets<W> q;
+    return q;
+}
+
+/// Packet p of a queue's first n rays from `base` on (t_min 0; inactive lanes past the end).
+template <int W, class Queue>
+RayPacket<W> queue_packet(const Queue& q, int base, int n, int p, const float* t_max,
+                          vmask<W>& active) {
+    const size_t i = static_cast<size_t>(base + p * W);
+    const int lanes = std::min(W, n - p * W);
+    active = mask_from_bits<W>(lanes >= 32 ? ~0u : (1u << lanes) - 1u);
+    RayPacket<W> r;
+    r.org = load_vec3<W>(&q.ox[i], &q.oy[i], &q.oz[i]);
+    r.dir = load_vec3<W>(&q.dx[i], &q.dy[i], &q.dz[i]);
+    r.t_min = vfloat<W>(0.0f);
+    r.t_max = select(active, t_max ? load<W>(t_max + i) : vfloat<W>(infinity), vfloat<W>(-1.0f));
+    return r;
+}
+
+/// Whether a pass of scattered rays goes as one stream (intersect_stream.h) rather than packet
+/// by packet: when the scene has meshes, whose deep trees part a packet's lanes. Over a few
+/// analytic shapes the stream's bookkeeping costs more than it saves (the glossy sphere of
+/// Figure 1b took 1.6x as long as a stream, the other figures without meshes 1.02x-1.15x).
+bool trace_as_stream(const Accel& accel, bool coherent) {
+    return !coherent && !accel.meshes.empty();
+}
+
 /// Traces every ray of `q` to its closest hit: the first pass (camera rays, coherent) as blocks,
-/// later passes packet by packet.
+/// later passes (scattered rays) as one stream, or packet by packet (trace_as_stream).
 template <int W>
 void trace_queue(const Scene& scene, const Accel& accel, const PathQueue& q, bool coherent,
                  HitArrays& h) {
-    constexpr int max_packets = max_block_rays / W;
     h.resize(q.ox.size());
+    auto store_hits = [&](int base, int count, const HitPacket<W>* hits) {
+        for (int p = 0; p < count; ++p) {
+            const size_t i = static_cast<size_t>(base + p * W);
+            store(&h.t[i], hits[p].t), store(&h.u[i], hits[p].u), store(&h.v[i], hits[p].v);
+            store(&h.prim[i], hits[p].prim), store(&h.object[i], hits[p].object);
+        }
+    };
+    if (trace_as_stream(accel, coherent)) {
+        const int count = (q.size + W - 1) / W;
+        QueuePackets<W>& qp = queue_packets<W>();
+        qp.reserve(static_cast<size_t>(count));
+        for (int p = 0; p < count; ++p)
+            qp.rays[p] = queue_packet<W>(q, 0, q.size, p, nullptr, qp.active[p]);
+        intersect_closest_stream(scene, accel, qp.rays.data(), qp.active.get(), qp.hits.data(),
+                                 count);
+        store_hits(0, count, qp.hits.data());
+        return;
+    }
+    constexpr int max_packets = max_block_rays / W;
     RayPacket<W> rays[max_packets];
     HitPacket<W> hits[max_packets];
     vmask<W> active[max_packets];
     for (int base = 0; base < q.size; base += max_block_rays) {
         const int n = std::min(max_block_rays, q.size - base);
         const int count = (n + W - 1) / W;
-        for (int p = 0; p < count; ++p) {
-            const size_t i = static_cast<size_t>(base + p * W);
-            const int lanes = std::min(W, n - p * W);
-            active[p] = mask_from_bits<W>(lanes >= 32 ? ~0u : (1u << lanes) - 1u);
-            rays[p].org = load_vec3<W>(&q.ox[i], &q.oy[i], &q.oz[i]);
-            rays[p].dir = load_vec3<W>(&q.dx[i], &q.dy[i], &q.dz[i]);
-            rays[p].t_min = vfloat<W>(0.0f);
-            rays[p].t_max = select(active[p], vfloat<W>(infinity), vfloat<W>(-1.0f));
-        }
+        for (int p = 0; p < count; ++p)
+            rays[p] = queue_packet<W>(q, base, n, p, nullptr, active[p]);
         if (coherent) {
             intersect_closest_block(scene, accel, rays, active, hits, count);
         } else {
             for (int p = 0; p < count; ++p)
                 hits[p] = intersect_closest(scene, accel, rays[p], active[p]);
         }
-        for (int p = 0; p < count; ++p) {
-            const size_t i = static_cast<size_t>(base + p * W);
-            store(&h.t[i], hits[p].t), store(&h.u[i], hits[p].u), store(&h.v[i], hits[p].v);
-            store(&h.prim[i], hits[p].prim), store(&h.object[i], hits[p].object);
-        }
+        store_hits(base, count, hits);
     }
 }
 
 /// Traces the shadow queue of one light and adds the contributions of free segments: as blocks
-/// after the camera pass (coherent), packet by packet after later passes (scattered hit points).
+/// after the camera pass (coherent); after later passes (scattered hit points) as one stream or
+/// packet by packet (trace_as_stream).
 template <int W>
 void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q, bool coherent,
                    TileBuffers& b) {
-    constexpr int max_packets = max_block_rays / W;
-    RayPacket<W> rays[max_packets];
-    vmask<W> active[max_packets], occluded[max_packets];
-    for (int base = 0; base < q.size; base += max_block_rays) {
-        const int n = std::min(max_block_rays, q.size - base);
-        const int count = (n + W - 1) / W;
-        for (int p = 0; p < count; ++p) {
-            const size_t i = static_cast<size_t>(base + p * W);
-            const int lanes = std::min(W, n - p * W);
-            active[p] = mask_from_bits<W>(lanes >= 32 ? ~0u : (1u << lanes) - 1u);
-            rays[p].org = load_vec3<W>(&q.ox[i], &q.oy[i], &q.oz[i]);
-            rays[p].dir = load_vec3<W>(&q.dx[i], &q.dy[i], &q.dz[i]);
-            rays[p].t_min = vfloat<W>(0.0f);
-            rays[p].t_max = select(active[p], load<W>(&q.t_max[i]), vfloat<W>(-1.0f));
-        }
-        if (coherent) {
-            intersect_any_block(scene, accel, rays, active, occluded, count);
-        } else {
-            for (int p = 0; p < count; ++p)
-                occluded[p] = intersect_any(scene, accel, rays[p], active[p]);
-        }
+    auto add_free = [&](int base, int count, const vmask<W>* active, const vmask<W>* occluded) {
         for (int p = 0; p < count; ++p) {
             for_each_active(mask_andnot(active[p], occluded[p]), [&](int l) {
                 const size_t i = static_cast<size_t>(base + p * W + l);
@@ -196,6 +231,33 @@ void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q,
                 b.acc_b[s] += q.cb[i];
             });
         }
+    };
+    if (trace_as_stream(accel, coherent)) {
+        const int count = (q.size + W - 1) / W;
+        QueuePackets<W>& qp = queue_packets<W>();
+        qp.reserve(static_cast<size_t>(count));
+        for (int p = 0; p < count; ++p)
+            qp.rays[p] = queue_packet<W>(q, 0, q.size, p, q.t_max.data(), qp.active[p]);
+        intersect_any_stream(scene, accel, qp.rays.data(), qp.active.get(), qp.occluded.get(),
+                             count);
+        add_free(0, count, qp.active.get(), qp.occluded.get());
+        return;
+    }
+    constexpr int max_packets = max_block_rays / W;
+    RayPacket<W> rays[max_packets];
+    vmask<W> active[max_packets], occluded[max_packets];
+    for (int base = 0; base < q.size; base += max_block_rays) {
+        const int n = std::min(max_block_rays, q.size - base);
+        const int count = (n + W - 1) / W;
+        for (int p = 0; p < count; ++p)
+            rays[p] = queue_packet<W>(q, base, n, p, q.t_max.data(), active[p]);
+        if (coherent) {
+            intersect_any_block(scene, accel, rays, active, occluded, count);
+        } else {
+            for (int p = 0; p < count; ++p)
+                occluded[p] = intersect_any(scene, accel, rays[p], active[p]);
+        }
+        add_free(base, count, active, occluded);
     }
 }
 

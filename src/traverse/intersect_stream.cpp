@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <memory>
 #include <new>
 #include <vector>
 
@@ -438,10 +437,10 @@ void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacke
     if (count <= 0 || accel.top.nodes.empty()) return;
     Stream& s = stream;
     s.reserve(static_cast<size_t>(count) * W);
-    std::unique_ptr<vmask<W>[]> open(new vmask<W>[static_cast<size_t>(count)]);
-    for (int p = 0; p < count; ++p) open[p] = mask_andnot(active[p], occluded[p]);
+    // the open lanes: active, not occluded by an unbounded object (occluded[p] for now)
+    for (int p = 0; p < count; ++p) occluded[p] = mask_andnot(active[p], occluded[p]);
     int32_t* list = s.ids.data;
-    const int n = fill_stream<W>(s, rays, open.get(), nullptr, count, list);
+    const int n = fill_stream<W>(s, rays, occluded, nullptr, count, list);
     auto never = [](uint32_t, const int32_t*, int) { return false; };
     traverse_stream<W>(
         accel.top, s, list, n, list + n,
@@ -467,11 +466,14 @@ void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacke
             }
         },
         never);
-    // the occluded rays back into the packets' masks
+    // the occluded lanes: those an unbounded object occludes (active, not open) and those the
+    // stream found (open, and marked)
     for (int p = 0; p < count; ++p) {
-        uint32_t b = 0;
-        for (int i = 0; i < W; ++i) b |= uint32_t(s.hit.data[p * W + i].t == 0.0f) << i;
-        occluded[p] = mask_or(occluded[p], mask_and(open[p], mask_from_bits<W>(b)));
+        uint32_t found = 0;
+        for (int i = 0; i < W; ++i) found |= uint32_t(s.hit.data[p * W + i].t == 0.0f) << i;
+        const vmask<W> open = occluded[p];
+        occluded[p] =
+            mask_or(mask_andnot(active[p], open), mask_and(open, mask_from_bits<W>(found)));
     }
 }
 
