@@ -76,11 +76,12 @@ inline vfloat<W> gather(const float* base, const vint<W>& index) {
 }
 
 /// A gather of whole records: out[k] lane i = base[8 * index_i + k] for k = 0 .. 7, the
-/// records 32 bytes each (base aligned to 32 bytes). At W = 16 with AVX-512, 16 loads of 32
-/// bytes and a transposition (a quarter of the loads of eight gathers); elsewhere eight gathers.
+/// records 32 bytes each (base aligned to 32 bytes; 8 * index must fit in an int32). At W = 16
+/// with AVX-512 (F and DQ), 16 loads of 32 bytes and a transposition (a quarter of the loads of
+/// eight gathers); elsewhere eight gathers.
 template <int W>
 inline void gather_records8(const float* base, const vint<W>& index, vfloat<W> (&out)[8]) {
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) && defined(__AVX512DQ__)
     if constexpr (W == 16) {
         alignas(64) int32_t at[16];
         index.store_aligned(at);

@@ -443,7 +443,8 @@ void register_block(const std::string& scene, const std::string& set, int thread
         ->UseRealTime();
 }
 
-/// Stream<W>: intersect_closest_stream on stream_rays rays at a time.
+/// Stream<W>: intersect_closest_stream, or intersect_any_stream for shadow rays, on stream_rays
+/// rays at a time (one task each: 15 tasks for the dragon's bounce rays, 2 threads).
 template <int W>
 void register_stream(const std::string& scene, const std::string& set, int threads) {
     const std::string suffix = "/" + scene + "/" + set + "/threads:" + std::to_string(threads);

@@ -40,8 +40,9 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                          const vmask<W>* active, vmask<W>* occluded, int count);
 
 /// One object's part of intersect_closest: improves `hit` for the active lanes with the same
-/// tie-break. A mesh's traversal starts at node `start` of its BVH, whose box every active lane
-/// must touch (0: the root, whose box is tested first). For intersect_closest_stream.
+/// tie-break. A mesh's traversal starts at node `start` of its BVH without testing that node's
+/// box (0: the root, whose box is tested): the caller knows the lanes reach it, or reached it
+/// under a larger limit, which only costs tests. For intersect_closest_stream.
 template <int W>
 void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,

@@ -5,6 +5,8 @@
 #include "traverse/intersect_stream.h"
 
 #include <algorithm>
+#include <cassert>
+#include <climits>
 #include <cstring>
 #include <new>
 #include <vector>
@@ -18,9 +20,11 @@ namespace raylane {
 
 namespace {
 
-constexpr int stack_size = 64;  // as intersect_packet.cpp: a median tree is at most 32 deep
+// A tree is at most stack_size levels deep (as intersect_packet.cpp assumes: a median tree over
+// 2^32 primitives is 32 deep, the SAH build halves at the median from depth 31 on).
+constexpr int stack_size = 64;
 
-/// 32-byte aligned storage that only grows (the thread's buffers, reused stream after stream).
+/// 64-byte aligned storage that only grows (the thread's buffers, reused stream after stream).
 template <class T>
 struct AlignedArray {
     T* data = nullptr;
@@ -46,7 +50,8 @@ struct SlabRecord {
 struct HitRecord {
     float dx, dy, dz, t_max;
     float t;
-    int32_t prim, object, unused;
+    int32_t prim, object;
+    int32_t occluded;  ///< intersect_any_stream: 1 once the ray is known to be occluded
 };
 static_assert(sizeof(SlabRecord) == 32 && sizeof(HitRecord) == 32);
 
@@ -58,9 +63,14 @@ struct Stream {
     AlignedArray<int32_t> ids;
     void reserve(size_t rays) {
         slab.reserve(rays), hit.reserve(rays), u.reserve(rays), v.reserve(rays);
-        // each level of the two nested traversals holds at most two lists as long as its parent's
-        ids.reserve(2 * rays * (2 * stack_size + 1) + 64);
+        // the lists: the first one, then per level of the top-level tree and of a mesh's tree
+        // (each at most stack_size deep) at most two lists as long as their parent's, and the
+        // mesh root's (traverse_stream)
+        ids.reserve(ids_needed(rays));
+        ids_end = ids.data + ids_needed(rays);
     }
+    static size_t ids_needed(size_t rays) { return rays * (4 * stack_size + 3) + 64; }
+    const int32_t* ids_end = nullptr;  ///< end of the room the lists of this stream may use
 };
 
 thread_local Stream stream;
@@ -90,10 +100,11 @@ void gather_slab(const Stream& s, const vint<W>& idx, SlabPacket<W>& sr, vfloat<
     limit = f[7];
 }
 
-/// A list's W rays as a packet (t_max: -1 in lanes past the list's end) with their hits so far.
+/// A list's W rays as a packet (t_max: -1 in lanes past the list's end) with their hits so far;
+/// `open`: the lanes not known to be occluded (intersect_any_stream).
 template <int W>
 void gather_rays(const Stream& s, const vint<W>& idx, vmask<W> lanes, RayPacket<W>& r,
-                 HitPacket<W>& h) {
+                 HitPacket<W>& h, vmask<W>& open) {
     vfloat<W> a[8], b[8];
     gather_records8<W>(reinterpret_cast<const float*>(s.slab.data), idx, a);
     gather_records8<W>(reinterpret_cast<const float*>(s.hit.data), idx, b);
@@ -105,6 +116,7 @@ void gather_rays(const Stream& s, const vint<W>& idx, vmask<W> lanes, RayPacket<
     h.prim = float_as_int(b[5]);
     h.object = float_as_int(b[6]);
     h.u = vfloat<W>(0.0f), h.v = vfloat<W>(0.0f);  // written back only where a hit wins
+    open = mask_and(lanes, eq(float_as_int(b[7]), vint<W>(0)));
 }
 
 /// Writes back the hits of the lanes in `won` and the rays' new limits.
@@ -138,6 +150,7 @@ void traverse_stream(const Bvh& bvh, const Stream& s, const int32_t* list, int n
     };
     // the root
     int32_t* root = free_ids;
+    assert(root + n <= s.ids_end);
     int n_root = 0;
     {
         vec3 lo, hi;
@@ -174,6 +187,7 @@ void traverse_stream(const Bvh& bvh, const Stream& s, const int32_t* list, int n
             box(nodes[second], lo2, hi2);
             int32_t* list_first = free_top;
             int32_t* list_second = free_top + e.n;
+            assert(list_second + e.n <= s.ids_end);
             int n_first = 0, n_second = 0, second_nearer = 0;
             for (int j = 0; j < e.n; j += W) {
                 vint<W> idx;
@@ -217,8 +231,9 @@ void traverse_stream(const Bvh& bvh, const Stream& s, const int32_t* list, int n
     }
 }
 
-/// Fills the stream from the packets (an inactive lane's limit is -infinity, so no test passes
-/// it) and writes the active lanes' ray numbers to `list`; returns how many there are.
+/// Fills the stream from the packets and writes the active lanes' ray numbers to `list` (the
+/// inactive lanes' records are filled too, with a limit of -infinity, but never listed);
+/// returns how many there are.
 template <int W>
 int fill_stream(Stream& s, const RayPacket<W>* rays, const vmask<W>* active,
                 const HitPacket<W>* hits, int count, int32_t* list) {
@@ -267,7 +282,8 @@ void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, const BvhNod
         load_batch<W>(list, n, j, idx, lanes);
         RayPacket<W> r;
         HitPacket<W> h;
-        gather_rays<W>(s, idx, lanes, r, h);
+        vmask<W> open;  // (for occlusion queries)
+        gather_rays<W>(s, idx, lanes, r, h, open);
         const WatertightPacket<W> wr = make_watertight_ray(r, lanes);
         vfloat<W> limit = t_limit(r, h);
         vmask<W> won = mask_and(lanes, mask_not(lanes));
@@ -289,7 +305,7 @@ void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, const BvhNod
 }
 
 /// Any object for the rays of a list, W at a time, through intersect_object_closest_from (a
-/// mesh from node `start`, which the rays touch, or from its root).
+/// mesh from node `start`, which the rays were listed for, or from its root).
 template <int W>
 void stream_object(Stream& s, const Scene& scene, const Accel& accel, uint32_t object,
                    const int32_t* list, int n, uint32_t start) {
@@ -299,7 +315,8 @@ void stream_object(Stream& s, const Scene& scene, const Accel& accel, uint32_t o
         load_batch<W>(list, n, j, idx, lanes);
         RayPacket<W> r;
         HitPacket<W> h;
-        gather_rays<W>(s, idx, lanes, r, h);
+        vmask<W> open;  // (for occlusion queries)
+        gather_rays<W>(s, idx, lanes, r, h, open);
         const vfloat<W> t_before = h.t;
         const vint<W> prim_before = h.prim, object_before = h.object;
         intersect_object_closest_from(scene, accel, object, r, lanes, h, start);
@@ -310,13 +327,13 @@ void stream_object(Stream& s, const Scene& scene, const Accel& accel, uint32_t o
 }
 
 /// Marks the lanes in `found` occluded: their limit drops to -infinity (no test passes them
-/// any more) and their hit record's t to 0.
+/// any more) and their hit record says so.
 template <int W>
 void mark_occluded(Stream& s, const vint<W>& idx, vmask<W> found) {
     for_each_active(found, [&](int i) {
         const auto k = static_cast<size_t>(get(idx, i));
         s.slab.data[k].limit = -infinity;
-        s.hit.data[k].t = 0.0f;
+        s.hit.data[k].occluded = 1;
     });
 }
 
@@ -330,8 +347,8 @@ void stream_leaf_any(Stream& s, const MeshAccel& mesh, const BvhNode& leaf, cons
         load_batch<W>(list, n, j, idx, lanes);
         RayPacket<W> r;
         HitPacket<W> h;
-        gather_rays<W>(s, idx, lanes, r, h);
-        const vmask<W> open = mask_and(lanes, h.t == vfloat<W>(infinity));
+        vmask<W> open;
+        gather_rays<W>(s, idx, lanes, r, h, open);
         if (none(open)) continue;
         const WatertightPacket<W> wr = make_watertight_ray(r, open);
         vmask<W> found = mask_and(open, mask_not(open));
@@ -357,8 +374,8 @@ void stream_object_any(Stream& s, const Scene& scene, const Accel& accel, uint32
         load_batch<W>(list, n, j, idx, lanes);
         RayPacket<W> r;
         HitPacket<W> h;
-        gather_rays<W>(s, idx, lanes, r, h);
-        const vmask<W> open = mask_and(lanes, h.t == vfloat<W>(infinity));
+        vmask<W> open;
+        gather_rays<W>(s, idx, lanes, r, h, open);
         if (none(open)) continue;
         const vmask<W> found = intersect_object_any_from(scene, accel, object, r, open, start);
         if (any(found)) mark_occluded<W>(s, idx, found);
@@ -372,6 +389,7 @@ void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayP
                               const vmask<W>* active, HitPacket<W>* hits, int count) {
     for (int p = 0; p < count; ++p) hits[p] = HitPacket<W>{};
     if (count <= 0) return;
+    assert(static_cast<int64_t>(count) * W <= max_stream_rays);
     for (uint32_t object : accel.unbounded)
         for (int p = 0; p < count; ++p)
             if (any(active[p]))
@@ -435,9 +453,11 @@ void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacke
         }
     }
     if (count <= 0 || accel.top.nodes.empty()) return;
+    assert(static_cast<int64_t>(count) * W <= max_stream_rays);
     Stream& s = stream;
     s.reserve(static_cast<size_t>(count) * W);
-    // the open lanes: active, not occluded by an unbounded object (occluded[p] for now)
+    // occluded[p] holds the open lanes until the end (active, not occluded by an unbounded
+    // object): they go into the stream, and no buffer is allocated for them
     for (int p = 0; p < count; ++p) occluded[p] = mask_andnot(active[p], occluded[p]);
     int32_t* list = s.ids.data;
     const int n = fill_stream<W>(s, rays, occluded, nullptr, count, list);
@@ -470,7 +490,7 @@ void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacke
     // stream found (open, and marked)
     for (int p = 0; p < count; ++p) {
         uint32_t found = 0;
-        for (int i = 0; i < W; ++i) found |= uint32_t(s.hit.data[p * W + i].t == 0.0f) << i;
+        for (int i = 0; i < W; ++i) found |= uint32_t(s.hit.data[p * W + i].occluded) << i;
         const vmask<W> open = occluded[p];
         occluded[p] =
             mask_or(mask_andnot(active[p], open), mask_and(open, mask_from_bits<W>(found)));

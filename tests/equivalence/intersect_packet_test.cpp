@@ -12,6 +12,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <tuple>
 
 #include "core/offset.h"
 #include "io/load_scene.h"
@@ -422,6 +423,121 @@ TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
         EXPECT_EQ(closest_stream_mismatches<W>(*l, rays, want.closest, stream_rays), 0u);
         EXPECT_EQ(any_stream_mismatches<W>(*l, rays, want.blocked, stream_rays), 0u);
     }
+}
+
+/// A UV sphere of triangles (rings x segments quads, two triangles each).
+Mesh tessellated_sphere(vec3 centre, float radius, int rings, int segments) {
+    Mesh m;
+    m.name = "sphere";
+    for (int i = 0; i <= rings; ++i) {
+        const float theta = 3.14159265f * float(i) / float(rings);
+        for (int j = 0; j < segments; ++j) {
+            const float phi = 6.28318531f * float(j) / float(segments);
+            m.positions.push_back(centre + radius * vec3(std::sin(theta) * std::cos(phi),
+                                                         std::cos(theta),
+                                                         std::sin(theta) * std::sin(phi)));
+        }
+    }
+    for (int i = 0; i < rings; ++i) {
+        for (int j = 0; j < segments; ++j) {
+            const auto at = [&](int r, int c) { return uint32_t(r * segments + c % segments); };
+            const uint32_t a = at(i, j), b = at(i, j + 1), c = at(i + 1, j), d = at(i + 1, j + 1);
+            if (i > 0) m.tris.push_back({a, b, c});  // the poles' quads are triangles
+            if (i + 1 < rings) m.tris.push_back({b, d, c});
+        }
+    }
+    return m;
+}
+
+/// The built-in scene's analytic shapes with two meshes beside them: the stream traversal's
+/// nested top-level and mesh traversals, its leaves and its hand-over of short lists to the
+/// packet traversal, on the awkward rays of MatchesScalarOnAwkwardRays (zero and NaN
+/// components, t_max 0 and infinity, origins on surfaces in both directions) and on random rays
+/// through the meshes; every third lane inactive though it holds a ray that hits (inactive
+/// lanes must come back as misses, and not occluded).
+TYPED_TEST(IntersectPacket, StreamsMatchScalarOnAwkwardRaysThroughMeshes) {
+    constexpr int W = TypeParam::value;
+    Loaded l;
+    l.scene = make_builtin_scene();
+    for (const auto& [centre, radius, rings] : {std::tuple{vec3(0.0f, 0.5f, 0.0f), 0.8f, 40},
+                                                std::tuple{vec3(-1.0f, 0.5f, 2.0f), 0.5f, 9}}) {
+        Object o;
+        o.kind = ShapeKind::mesh;
+        o.shape = uint32_t(l.scene.meshes.size());
+        l.scene.objects.push_back(o);
+        l.scene.meshes.push_back(tessellated_sphere(centre, radius, rings, 2 * rings));
+    }
+    l.accel = build_accel(l.scene, BuildParams{});
+    std::vector<Ray> rays;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const vec3 dirs[] = {{1, 0, 0},  {0, -1, 0},          {-0.0f, 0, 1},
+                         {0, 0, -1}, {0.0f, -0.0f, 1.0f}, {1e-30f, -1, 0},
+                         {1, 1, 0},  {0, -1, 1},          {nan, 0.2f, 1}};
+    const vec3 origins[] = {{0, 0.5f, -5}, {0, 3, 0},     {0, 0.5f, 0}, {-1, 0.5f, 2},
+                            {1, -1, 5},    {-4, 0.6f, 2}, {nan, 0, -5}};
+    const float t_maxes[] = {infinity, 0.0f, 1.0f, 100.0f};
+    for (vec3 o : origins)
+        for (vec3 d : dirs)
+            for (float t_max : t_maxes) rays.push_back({o, d, 0.0f, t_max});
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> uni(-1.0f, 1.0f);
+    for (int k = 0; k < 20000; ++k) {  // from all around, half of them at the meshes
+        const vec3 o(4.0f * uni(rng), 0.5f + 2.0f * uni(rng), 4.0f * uni(rng));
+        const vec3 aim =
+            k % 4 == 0   ? vec3(0.0f, 0.5f, 0.0f) + 0.8f * vec3(uni(rng), uni(rng), uni(rng))
+            : k % 4 == 1 ? vec3(-1.0f, 0.5f, 2.0f) + 0.5f * vec3(uni(rng), uni(rng), uni(rng))
+                         : o + vec3(uni(rng), uni(rng), uni(rng));
+        rays.push_back({o, aim - o, 0.0f, infinity});
+    }
+    const std::vector<Ray> first = rays;
+    for (const Ray& r : first) {
+        const Hit h = intersect_closest(l.scene, l.accel, r);
+        if (!h.hit()) continue;
+        const vec3 p = r.org + h.t * r.dir;
+        rays.push_back({p, r.dir, 0.0f, infinity});
+        rays.push_back({p, -r.dir, 0.0f, infinity});
+    }
+    ScalarAnswers want = scalar_answers(l, rays);
+    size_t mesh_hits = 0;
+    for (const Hit& h : want.closest)
+        mesh_hits += h.hit() && l.scene.objects[h.object].kind == ShapeKind::mesh;
+    EXPECT_GT(mesh_hits, rays.size() / 10);
+    for (size_t stream_rays : {4096, 32}) {
+        EXPECT_EQ(closest_stream_mismatches<W>(l, rays, want.closest, stream_rays), 0u);
+        EXPECT_EQ(any_stream_mismatches<W>(l, rays, want.blocked, stream_rays), 0u);
+    }
+    // every third lane inactive, holding a ray that hits
+    const size_t packets = (rays.size() + W - 1) / W;
+    std::vector<RayPacket<W>> p(packets);
+    const std::unique_ptr<vmask<W>[]> active(new vmask<W>[packets]),
+        occluded(new vmask<W>[packets]);
+    std::vector<HitPacket<W>> got(packets);
+    size_t lane = 0;
+    for (size_t k = 0; k < packets; ++k) {
+        p[k] = make_packet<W>(rays, k * W, active[k]);
+        uint32_t keep = 0;
+        for (int i = 0; i < W; ++i, ++lane) keep |= uint32_t(lane % 3 != 0) << i;
+        active[k] = mask_and(active[k], mask_from_bits<W>(keep));
+    }
+    intersect_closest_stream(l.scene, l.accel, p.data(), active.get(), got.data(), int(packets));
+    intersect_any_stream(l.scene, l.accel, p.data(), active.get(), occluded.get(), int(packets));
+    size_t bad = 0, off = 0;
+    for (size_t k = 0; k < packets; ++k) {
+        for (int i = 0; i < W && k * W + size_t(i) < rays.size(); ++i) {
+            const size_t r = k * W + size_t(i);
+            const bool on = (bits(active[k]) >> i) & 1u;
+            const Hit g = get_hit(got[k], i);
+            const Hit w = on ? want.closest[r] : Hit{};
+            off += !on;
+            bad += g.object != w.object || g.prim != w.prim || (w.hit() && g.t != w.t);
+            bad += ((bits(occluded[k]) >> i) & 1u) != (on ? want.blocked[r] : 0u);
+        }
+    }
+    EXPECT_GT(off, rays.size() / 4);
+    EXPECT_EQ(bad, 0u);
+    // no packets at all
+    intersect_closest_stream(l.scene, l.accel, p.data(), active.get(), got.data(), 0);
+    intersect_any_stream(l.scene, l.accel, p.data(), active.get(), occluded.get(), 0);
 }
 
 /// The camera's rays reversed, searching behind their origin (t in (-1e4, 0)): block culling
