@@ -6,10 +6,8 @@
 
 #include <algorithm>
 #include <cassert>
-#include <climits>
 #include <cstring>
 #include <new>
-#include <vector>
 
 #include "traverse/hit_update_packet.h"
 #include "traverse/intersect_packet.h"
