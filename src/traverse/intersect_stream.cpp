@@ -380,6 +380,47 @@ void stream_object_any(Stream& s, const Scene& scene, const Accel& accel, uint32
     }
 }
 
+/// Both levels for the listed rays: the top-level BVH, then at each of its leaves every object
+/// (a mesh by its own BVH), closest hits or occlusion (`any_hit`: shadow casters only).
+template <bool any_hit, int W>
+void traverse_scene(Stream& s, const Scene& scene, const Accel& accel, int32_t* list, int n) {
+    auto never = [](uint32_t, const int32_t*, int) { return false; };
+    traverse_stream<W>(
+        accel.top, s, list, n, list + n,
+        [&](const BvhNode& top_leaf, const int32_t* tl, int tn, int32_t* free_ids) {
+            for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
+                const uint32_t object = accel.top.prim_ids[k];
+                const Object& o = scene.objects[object];
+                if (any_hit && !o.casts_shadows) continue;
+                // the object for a list of rays, a mesh from node `start`
+                auto whole = [&](const int32_t* ll, int ln, uint32_t start) {
+                    if constexpr (any_hit)
+                        stream_object_any<W>(s, scene, accel, object, ll, ln, start);
+                    else
+                        stream_object<W>(s, scene, accel, object, ll, ln, start);
+                };
+                if (o.kind != ShapeKind::mesh) {
+                    whole(tl, tn, 0);
+                    continue;
+                }
+                const MeshAccel& mesh = accel.meshes[o.shape];
+                traverse_stream<W>(
+                    mesh.bvh, s, tl, tn, free_ids,
+                    [&](const BvhNode& leaf, const int32_t* ll, int ln, int32_t*) {
+                        if constexpr (any_hit)
+                            stream_leaf_any<W>(s, mesh, leaf, ll, ln);
+                        else
+                            stream_leaf<W>(s, mesh, object, leaf, ll, ln);
+                    },
+                    [&](uint32_t node, const int32_t* ll, int ln) {
+                        whole(ll, ln, node);
+                        return true;
+                    });
+            }
+        },
+        never);
+}
+
 }  // namespace
 
 template <int W>
@@ -398,30 +439,7 @@ void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayP
     s.reserve(n_rays);
     int32_t* list = s.ids.data;
     const int n = fill_stream(s, rays, active, hits, count, list);
-    auto never = [](uint32_t, const int32_t*, int) { return false; };
-    traverse_stream<W>(
-        accel.top, s, list, n, list + n,
-        [&](const BvhNode& top_leaf, const int32_t* tl, int tn, int32_t* free_ids) {
-            for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
-                const uint32_t object = accel.top.prim_ids[k];
-                const Object& o = scene.objects[object];
-                if (o.kind != ShapeKind::mesh) {
-                    stream_object<W>(s, scene, accel, object, tl, tn, 0);
-                    continue;
-                }
-                const MeshAccel& mesh = accel.meshes[o.shape];
-                traverse_stream<W>(
-                    mesh.bvh, s, tl, tn, free_ids,
-                    [&](const BvhNode& leaf, const int32_t* ll, int ln, int32_t*) {
-                        stream_leaf<W>(s, mesh, object, leaf, ll, ln);
-                    },
-                    [&](uint32_t node, const int32_t* ll, int ln) {
-                        stream_object<W>(s, scene, accel, object, ll, ln, node);
-                        return true;
-                    });
-            }
-        },
-        never);
+    traverse_scene<false, W>(s, scene, accel, list, n);
     // the hits back into the packets
     for (int p = 0; p < count; ++p) {
         alignas(64) float t[W];
@@ -459,31 +477,7 @@ void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacke
     for (int p = 0; p < count; ++p) occluded[p] = mask_andnot(active[p], occluded[p]);
     int32_t* list = s.ids.data;
     const int n = fill_stream<W>(s, rays, occluded, nullptr, count, list);
-    auto never = [](uint32_t, const int32_t*, int) { return false; };
-    traverse_stream<W>(
-        accel.top, s, list, n, list + n,
-        [&](const BvhNode& top_leaf, const int32_t* tl, int tn, int32_t* free_ids) {
-            for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
-                const uint32_t object = accel.top.prim_ids[k];
-                const Object& o = scene.objects[object];
-                if (!o.casts_shadows) continue;
-                if (o.kind != ShapeKind::mesh) {
-                    stream_object_any<W>(s, scene, accel, object, tl, tn, 0);
-                    continue;
-                }
-                const MeshAccel& mesh = accel.meshes[o.shape];
-                traverse_stream<W>(
-                    mesh.bvh, s, tl, tn, free_ids,
-                    [&](const BvhNode& leaf, const int32_t* ll, int ln, int32_t*) {
-                        stream_leaf_any<W>(s, mesh, leaf, ll, ln);
-                    },
-                    [&](uint32_t node, const int32_t* ll, int ln) {
-                        stream_object_any<W>(s, scene, accel, object, ll, ln, node);
-                        return true;
-                    });
-            }
-        },
-        never);
+    traverse_scene<true, W>(s, scene, accel, list, n);
     // the occluded lanes: those an unbounded object occludes (active, not open) and those the
     // stream found (open, and marked)
     for (int p = 0; p < count; ++p) {
