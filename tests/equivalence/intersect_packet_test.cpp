@@ -200,32 +200,42 @@ size_t any_block_mismatches(const Loaded& l, const std::vector<Ray>& rays,
     return bad;
 }
 
-/// The same through intersect_closest_stream, in streams of `stream_rays` rays (a partial one
-/// at the end).
-template <int W>
-size_t closest_stream_mismatches(const Loaded& l, const std::vector<Ray>& rays,
-                                 const std::vector<Hit>& want, size_t stream_rays = 4096) {
-    std::atomic<size_t> bad{0};
+/// Calls trace(packets, active, count, first) for the rays in streams of `stream_rays` rays (a
+/// partial one at the end); `first` is the stream's first packet number.
+template <int W, class Trace>
+void for_each_stream(const std::vector<Ray>& rays, size_t stream_rays, Trace&& trace) {
     const size_t per_stream = stream_rays / W;
     const size_t packets = (rays.size() + W - 1) / W;
     tbb::parallel_for(size_t(0), (packets + per_stream - 1) / per_stream, [&](size_t b) {
         std::vector<RayPacket<W>> p(per_stream);
         const std::unique_ptr<vmask<W>[]> active(new vmask<W>[per_stream]);  // not vector<bool>
-        std::vector<HitPacket<W>> got(per_stream);
         int count = 0;
         for (size_t k = b * per_stream; k < std::min(packets, (b + 1) * per_stream); ++k, ++count)
             p[size_t(count)] = make_packet<W>(rays, k * W, active[size_t(count)]);
-        intersect_closest_stream(l.scene, l.accel, p.data(), active.get(), got.data(), count);
-        for (int c = 0; c < count; ++c) {
-            const size_t k = b * per_stream + size_t(c);
-            for (int i = 0; i < W && k * W + i < rays.size(); ++i) {
-                const Hit g = get_hit(got[size_t(c)], i), w = want[k * W + i];
-                if (g.object != w.object || g.prim != w.prim || (w.hit() && g.t != w.t) ||
-                    (w.hit() && (g.uv.x != w.uv.x || g.uv.y != w.uv.y)))
-                    ++bad;
-            }
-        }
+        trace(p.data(), active.get(), count, b * per_stream);
     });
+}
+
+/// The same through intersect_closest_stream / intersect_any_stream (uv compared too).
+template <int W>
+size_t closest_stream_mismatches(const Loaded& l, const std::vector<Ray>& rays,
+                                 const std::vector<Hit>& want, size_t stream_rays = 4096) {
+    std::atomic<size_t> bad{0};
+    for_each_stream<W>(rays, stream_rays,
+                       [&](const RayPacket<W>* p, const vmask<W>* active, int count, size_t first) {
+                           std::vector<HitPacket<W>> got(static_cast<size_t>(count));
+                           intersect_closest_stream(l.scene, l.accel, p, active, got.data(), count);
+                           for (int c = 0; c < count; ++c) {
+                               const size_t k = first + size_t(c);
+                               for (int i = 0; i < W && k * W + i < rays.size(); ++i) {
+                                   const Hit g = get_hit(got[size_t(c)], i), w = want[k * W + i];
+                                   if (g.object != w.object || g.prim != w.prim ||
+                                       (w.hit() && g.t != w.t) ||
+                                       (w.hit() && (g.uv.x != w.uv.x || g.uv.y != w.uv.y)))
+                                       ++bad;
+                               }
+                           }
+                       });
     return bad;
 }
 
@@ -233,23 +243,18 @@ template <int W>
 size_t any_stream_mismatches(const Loaded& l, const std::vector<Ray>& rays,
                              const std::vector<uint8_t>& want, size_t stream_rays = 4096) {
     std::atomic<size_t> bad{0};
-    const size_t per_stream = stream_rays / W;
-    const size_t packets = (rays.size() + W - 1) / W;
-    tbb::parallel_for(size_t(0), (packets + per_stream - 1) / per_stream, [&](size_t b) {
-        std::vector<RayPacket<W>> p(per_stream);
-        const std::unique_ptr<vmask<W>[]> active(new vmask<W>[per_stream]),
-            got(new vmask<W>[per_stream]);
-        int count = 0;
-        for (size_t k = b * per_stream; k < std::min(packets, (b + 1) * per_stream); ++k, ++count)
-            p[size_t(count)] = make_packet<W>(rays, k * W, active[size_t(count)]);
-        intersect_any_stream(l.scene, l.accel, p.data(), active.get(), got.get(), count);
-        for (int c = 0; c < count; ++c) {
-            const size_t k = b * per_stream + size_t(c);
-            const uint32_t g = bits(got[size_t(c)]);
-            for (int i = 0; i < W && k * W + i < rays.size(); ++i)
-                if (((g >> i) & 1u) != want[k * W + i]) ++bad;
-        }
-    });
+    for_each_stream<W>(
+        rays, stream_rays,
+        [&](const RayPacket<W>* p, const vmask<W>* active, int count, size_t first) {
+            const std::unique_ptr<vmask<W>[]> got(new vmask<W>[static_cast<size_t>(count) + 1]);
+            intersect_any_stream(l.scene, l.accel, p, active, got.get(), count);
+            for (int c = 0; c < count; ++c) {
+                const size_t k = first + size_t(c);
+                const uint32_t g = bits(got[size_t(c)]);
+                for (int i = 0; i < W && k * W + i < rays.size(); ++i)
+                    if (((g >> i) & 1u) != want[k * W + i]) ++bad;
+            }
+        });
     return bad;
 }
 
