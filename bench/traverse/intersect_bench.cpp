@@ -24,6 +24,7 @@
 #include "render/camera_rays.h"
 #include "render/tiles.h"
 #include "support/summary.h"
+#include "traverse/intersect_block.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/intersect_stream.h"

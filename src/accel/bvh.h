@@ -49,10 +49,14 @@ struct BuildParams {
 /// primitives. O(n log n).
 Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params);
 
+/// Entries of a traversal stack: no tree is deeper (a median-split tree over 2^32 primitives is
+/// 32 levels deep; the SAH build halves at the median from depth 31 on).
+inline constexpr int traversal_stack_size = 64;
+
 /// Binned SAH (16 bins per axis, the cheapest split of the three axes; a node visit costs three
 /// primitive tests), a leaf when that is cheaper and the node holds at most max_leaf_size
 /// primitives. From depth 31 on it halves at the median, so the tree stays within
-/// the traversal stack. Same node layout and order rules as build_bvh_median.
+/// traversal_stack_size. Same node layout and order rules as build_bvh_median.
 Bvh build_bvh_sah(std::span<const Aabb> prim_bounds, const BuildParams& params);
 
 /// Triangle vertices in BVH leaf order, ready for the watertight test (36 bytes each).

@@ -16,6 +16,7 @@
 #include "scene/features.h"
 #include "shade/shade_packet.h"
 #include "simd/hash.h"
+#include "traverse/intersect_block.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_stream.h"
 

@@ -23,6 +23,7 @@
 #include "shade/texture_packet.h"
 #include "simd/hash.h"
 #include "simd/lanes.h"
+#include "traverse/intersect_block.h"
 #include "traverse/intersect_packet.h"
 
 namespace raylane {

@@ -1,5 +1,6 @@
 // traverse: closest-hit and any-hit queries of W rays against the whole scene (both BVH
-// levels), the packet path. Mirrors intersect_scalar.h.
+// levels), the packet path. Mirrors intersect_scalar.h. Blocks of coherent packets:
+// intersect_block.h; streams of incoherent rays: intersect_stream.h.
 #pragma once
 
 #include "accel/bvh.h"
@@ -20,29 +21,10 @@ template <int W>
 vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
                        vmask<W> active);
 
-/// Most rays a block may hold: a 16 x 16 tile.
-inline constexpr int max_block_rays = 256;
-
-/// intersect_closest for a block of coherent packets (a tile's primary rays, say): the same
-/// answers lane by lane, but the block is traversed as a whole. A node is tested against the
-/// packets in order until one hits it (most nodes cost one test); a node that no packet can hit,
-/// by interval arithmetic over the block's origins and reciprocal directions, is culled at once
-/// (ranged traversal: Overbeck, Ramamoorthi, Mark, "Large Ray Packets for Real-time Whitted Ray
-/// Tracing", IEEE RT 2008; interval culling: Wald, Boulos, Shirley, "Ray Tracing Deformable
-/// Scenes Using Dynamic Bounding Volume Hierarchies", ACM TOG 2007). count * W <= max_block_rays.
-template <int W>
-void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
-                             const vmask<W>* active, HitPacket<W>* hits, int count);
-
-/// intersect_any for a block of packets; occluded[p] receives the lanes of packet p that hit.
-template <int W>
-void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
-                         const vmask<W>* active, vmask<W>* occluded, int count);
-
 /// One object's part of intersect_closest: improves `hit` for the active lanes with the same
 /// tie-break. A mesh's traversal starts at node `start` of its BVH without testing that node's
 /// box (0: the root, whose box is tested): the caller knows the lanes reach it, or reached it
-/// under a larger limit, which only costs tests. For intersect_closest_stream.
+/// under a larger limit, which only costs tests. For the block and stream traversals.
 template <int W>
 void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,

@@ -15,8 +15,6 @@
 namespace raylane {
 namespace {
 
-constexpr int stack_size = 64;  // a median-split tree over 2^32 primitives is 32 levels deep
-
 /// The ray moved into an object's space; t is unchanged because the map is affine.
 Ray to_object_space(const Object& object, const Ray& ray) {
     if (!object.has_transform) return ray;
@@ -72,7 +70,7 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const Ray& r
     const WatertightRay wr = make_watertight_ray(ray);
     const SlabRay sr = make_slab_ray(ray);
     const int dir_neg[3] = {ray.dir.x < 0.0f, ray.dir.y < 0.0f, ray.dir.z < 0.0f};
-    uint32_t stack[stack_size];
+    uint32_t stack[traversal_stack_size];
     int top = 0;
     uint32_t node_index = 0;
     for (;;) {
@@ -111,7 +109,7 @@ bool intersect_mesh_any(const MeshAccel& mesh, const Ray& ray, TraversalStats& s
     if (mesh.bvh.nodes.empty()) return false;
     const WatertightRay wr = make_watertight_ray(ray);
     const SlabRay sr = make_slab_ray(ray);
-    uint32_t stack[stack_size];
+    uint32_t stack[traversal_stack_size];
     int top = 0;
     uint32_t node_index = 0;
     for (;;) {
@@ -175,7 +173,7 @@ Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
     if (!accel.top.nodes.empty()) {
         const SlabRay sr = make_slab_ray(ray);
         const int dir_neg[3] = {ray.dir.x < 0.0f, ray.dir.y < 0.0f, ray.dir.z < 0.0f};
-        uint32_t stack[stack_size];
+        uint32_t stack[traversal_stack_size];
         int top = 0;
         uint32_t node_index = 0;
         for (;;) {
@@ -222,7 +220,7 @@ bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
     }
     if (!found && !accel.top.nodes.empty()) {
         const SlabRay sr = make_slab_ray(ray);
-        uint32_t stack[stack_size];
+        uint32_t stack[traversal_stack_size];
         int top = 0;
         uint32_t node_index = 0;
         for (;;) {

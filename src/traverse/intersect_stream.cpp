@@ -18,10 +18,6 @@ namespace raylane {
 
 namespace {
 
-// A tree is at most stack_size levels deep (as intersect_packet.cpp assumes: a median tree over
-// 2^32 primitives is 32 deep, the SAH build halves at the median from depth 31 on).
-constexpr int stack_size = 64;
-
 /// 64-byte aligned storage that only grows (the thread's buffers, reused stream after stream).
 template <class T>
 struct AlignedArray {
@@ -62,12 +58,12 @@ struct Stream {
     void reserve(size_t rays) {
         slab.reserve(rays), hit.reserve(rays), u.reserve(rays), v.reserve(rays);
         // the lists: the first one, then per level of the top-level tree and of a mesh's tree
-        // (each at most stack_size deep) at most two lists as long as their parent's, and the
-        // mesh root's (traverse_stream)
+        // (each at most traversal_stack_size deep) at most two lists as long as their parent's, and
+        // the mesh root's (traverse_stream)
         ids.reserve(ids_needed(rays));
         ids_end = ids.data + ids_needed(rays);
     }
-    static size_t ids_needed(size_t rays) { return rays * (4 * stack_size + 3) + 64; }
+    static size_t ids_needed(size_t rays) { return rays * (4 * traversal_stack_size + 3) + 64; }
     const int32_t* ids_end = nullptr;  ///< end of the room the lists of this stream may use
 };
 
@@ -169,7 +165,7 @@ void traverse_stream(const Bvh& bvh, const Stream& s, const int32_t* list, int n
         int n;
         int32_t* list;
     };
-    Entry stack[stack_size];
+    Entry stack[traversal_stack_size];
     int top = 0;
     Entry e{0, n_root, root};
     int32_t* free_top = root + n_root;

@@ -20,6 +20,7 @@
 #include "scene/transform.h"
 #include "support/ray_packets.h"
 #include "support/widths.h"
+#include "traverse/intersect_block.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/intersect_stream.h"
 

@@ -1,0 +1,404 @@
+// traverse: closest-hit and any-hit queries of a block of coherent packets (a tile's camera
+// rays, their shadow rays), traversed as a whole: the ranged traversal and the interval culling
+// of intersect_block.h. The node and triangle tests are the packets' own (slab_packet.h,
+// triangle_packet.h) and hits are kept with the same tie-break (hit_update_packet.h), so every
+// lane gets the packet path's answer.
+#include "traverse/intersect_block.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "traverse/hit_update_packet.h"
+#include "traverse/intersect_packet.h"
+#include "traverse/slab_packet.h"
+#include "traverse/triangle_packet.h"
+
+namespace raylane {
+
+namespace {
+
+/// Interval bounds of a block's rays, for culling a node for all of them at once.
+struct BlockBounds {
+    vec3 org_lo{infinity}, org_hi{-infinity};
+    vec3 inv_lo{infinity}, inv_hi{-infinity};
+    float t_min = infinity;                  ///< smallest t_min of the active lanes
+    bool usable[3] = {false, false, false};  ///< reciprocals finite and of one sign on this axis
+    int dir_neg[3] = {0, 0, 0};              ///< the block's direction signs, for near-first order
+    /// The same bounds for block_may_hit, mirrored (coordinates negated on axes of negative
+    /// directions: neg) so that every reciprocal is positive; an unusable axis gets origins
+    /// [-inf, inf] and reciprocals [1, 1], which bound nothing.
+    bool neg[3] = {false, false, false};
+    vec3 mirrored_org_lo{-infinity}, mirrored_org_hi{infinity};
+    vec3 mirrored_inv_lo{1.0f}, mirrored_inv_hi{1.0f};
+};
+
+template <int W>
+BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, int count) {
+    // Lane-wise minima and maxima over the packets first, one horizontal reduction per bound at
+    // the end: the same set of active, non-NaN lanes as hmin/hmax per packet, 13 reductions per
+    // block instead of 13 per packet. The reciprocals' bounds come from the directions' (below),
+    // three divisions per block: a block culled at the root never computes its packets'
+    // reciprocals.
+    const vfloat<W> inf(infinity), neg_inf(-infinity);
+    vfloat<W> t_min = inf, org_lo[3] = {inf, inf, inf}, org_hi[3] = {neg_inf, neg_inf, neg_inf};
+    vfloat<W> dir_lo[3] = {inf, inf, inf}, dir_hi[3] = {neg_inf, neg_inf, neg_inf};
+    BlockBounds b;
+    // the block's direction signs: its first active lane's
+    int first = 0;
+    while (first < count && none(active[first])) ++first;
+    if (first < count) {
+        const int lane = first_active(active[first]);
+        const vfloat<W>* dir[3] = {&rays[first].dir.x, &rays[first].dir.y, &rays[first].dir.z};
+        for (int k = 0; k < 3; ++k) b.dir_neg[k] = 1.0f / get(*dir[k], lane) < 0.0f;
+    }
+    for (int p = first; p < count; ++p) {
+        const vmask<W> m = active[p];
+        // min(x, acc) is x < acc ? x : acc (simd/math.h): a NaN lane keeps acc; an inactive
+        // packet changes nothing
+        auto lo = [&](vfloat<W>& acc, const vfloat<W>& x) { acc = select(m, min(x, acc), acc); };
+        auto hi = [&](vfloat<W>& acc, const vfloat<W>& x) { acc = select(m, max(x, acc), acc); };
+        lo(t_min, rays[p].t_min);
+        const vfloat<W>* org[3] = {&rays[p].org.x, &rays[p].org.y, &rays[p].org.z};
+        const vfloat<W>* dir[3] = {&rays[p].dir.x, &rays[p].dir.y, &rays[p].dir.z};
+        for (int k = 0; k < 3; ++k) {
+            lo(org_lo[k], *org[k]);
+            hi(org_hi[k], *org[k]);
+            lo(dir_lo[k], *dir[k]);
+            hi(dir_hi[k], *dir[k]);
+        }
+    }
+    b.t_min = hmin(t_min);
+    for (int k = 0; k < 3; ++k) {
+        b.org_lo[k] = hmin(org_lo[k]);
+        b.org_hi[k] = hmax(org_hi[k]);
+        // 1/x is correctly rounded and decreasing on each sign, so over directions of one sign
+        // these are exactly the bounds of the lanes' reciprocals. The axis is usable when they
+        // are, as the lanes' own were before this shortcut: finite and strictly of one sign.
+        // That leaves out a zero or mixed signs (d_lo <= 0 <= d_hi), an infinite or, under
+        // flush-to-zero, a huge direction (a reciprocal of +-0; block_may_hit takes the sign
+        // from inv_hi) and an axis whose active lanes are all NaN (d_lo = +inf, d_hi = -inf).
+        const float d_lo = hmin(dir_lo[k]), d_hi = hmax(dir_hi[k]);
+        b.inv_lo[k] = 1.0f / d_hi;
+        b.inv_hi[k] = 1.0f / d_lo;
+        const bool finite = std::isfinite(b.inv_lo[k]) && std::isfinite(b.inv_hi[k]) &&
+                            std::isfinite(b.org_lo[k]) && std::isfinite(b.org_hi[k]);
+        const bool positive = d_lo > 0.0f && b.inv_lo[k] > 0.0f;
+        const bool negative = d_hi < 0.0f && b.inv_hi[k] < 0.0f;
+        b.usable[k] = finite && (positive || negative);
+        if (b.usable[k]) {
+            b.neg[k] = negative;
+            b.mirrored_org_lo[k] = negative ? -b.org_hi[k] : b.org_lo[k];
+            b.mirrored_org_hi[k] = negative ? -b.org_lo[k] : b.org_hi[k];
+            b.mirrored_inv_lo[k] = negative ? -b.inv_hi[k] : b.inv_lo[k];
+            b.mirrored_inv_hi[k] = negative ? -b.inv_lo[k] : b.inv_hi[k];
+        }
+    }
+    return b;
+}
+
+/// False only when no ray of the block can touch the box at t >= the block's smallest t_min:
+/// interval arithmetic over the origins and reciprocals, with a relative margin far above float
+/// rounding. In the mirrored space every reciprocal is positive, so the smallest entry distance
+/// is (lo - largest origin) times the smallest or largest reciprocal by its sign, and the largest
+/// exit distance likewise: the products of the four-corner bound that win, branch-free.
+bool block_may_hit(const BlockBounds& b, const BvhNode& node) {
+    float t0 = b.t_min, t1 = infinity;
+    for (int k = 0; k < 3; ++k) {
+        const float lo = b.neg[k] ? -node.hi[k] : node.lo[k];
+        const float hi = b.neg[k] ? -node.lo[k] : node.hi[k];
+        const float a = lo - b.mirrored_org_hi[k], c = hi - b.mirrored_org_lo[k];
+        const float enter = a * (a < 0.0f ? b.mirrored_inv_hi[k] : b.mirrored_inv_lo[k]);
+        const float exit = c * (c < 0.0f ? b.mirrored_inv_lo[k] : b.mirrored_inv_hi[k]);
+        t0 = std::max(t0, enter);
+        t1 = std::min(t1, exit);
+    }
+    const float margin = 1e-4f * (std::fabs(t0) + std::fabs(t1 == infinity ? 0.0f : t1)) + 1e-30f;
+    return t0 <= t1 + margin;
+}
+
+/// The box [lo, hi] under m, as a point (w = 1) or a direction (w = 0): the centre mapped and the
+/// half extent by |m|. `mag` bounds the size of the terms summed in each row, the scale of the
+/// rounding of to_object_space.
+void transform_box(const mat4& m, float w, vec3 lo, vec3 hi, vec3& out_lo, vec3& out_hi,
+                   vec3& mag) {
+    const vec3 c = 0.5f * (lo + hi), e = 0.5f * (hi - lo);
+    const vec3 size = glm::max(glm::abs(lo), glm::abs(hi));
+    for (int k = 0; k < 3; ++k) {
+        float centre = w * m[3][k], extent = 0.0f, terms = std::fabs(w * m[3][k]);
+        for (int j = 0; j < 3; ++j) {
+            centre += m[j][k] * c[j];
+            extent += std::fabs(m[j][k]) * e[j];
+            terms += std::fabs(m[j][k]) * size[j];
+        }
+        out_lo[k] = centre - extent, out_hi[k] = centre + extent, mag[k] = terms;
+    }
+}
+
+/// False only when no ray of the block can meet the plane at t >= 0: every origin strictly on
+/// one side and every direction strictly away from it, so plane_packet.h's t = S / D is negative
+/// (S = n.(point - org), D = n.dir in the object's space). Interval arithmetic over the block's
+/// origins and directions (from the reciprocals, on the axes where they have one sign); the
+/// margins, 4e-6 of the magnitudes involved, are far above the rounding of the transform and the
+/// dot products (a few 1e-7), and far below the offset of a ray leaving the plane (256 ulps).
+bool block_may_hit_plane(const BlockBounds& b, const Object& object, const Plane& plane) {
+    if (!(b.t_min >= 0.0f)) return true;
+    vec3 olo = b.org_lo, ohi = b.org_hi, dlo, dhi;
+    for (int k = 0; k < 3; ++k) {
+        if (!b.usable[k] && (object.has_transform || plane.normal[k] != 0.0f)) return true;
+        dlo[k] = b.usable[k] ? 1.0f / b.inv_hi[k] : 0.0f;
+        dhi[k] = b.usable[k] ? 1.0f / b.inv_lo[k] : 0.0f;
+    }
+    vec3 omag = glm::max(glm::abs(olo), glm::abs(ohi)),
+         dmag = glm::max(glm::abs(dlo), glm::abs(dhi));
+    if (object.has_transform) {
+        transform_box(object.object_from_world, 1.0f, b.org_lo, b.org_hi, olo, ohi, omag);
+        const vec3 wlo = dlo, whi = dhi;
+        transform_box(object.object_from_world, 0.0f, wlo, whi, dlo, dhi, dmag);
+    }
+    const vec3 n = plane.normal, p = plane.point;
+    float s_lo = 0.0f, s_hi = 0.0f, d_lo = 0.0f, d_hi = 0.0f, s_mag = 0.0f, d_mag = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        if (n[k] == 0.0f) continue;  // the bounds of that axis may be infinite
+        const float s0 = n[k] * (p[k] - olo[k]), s1 = n[k] * (p[k] - ohi[k]);
+        const float d0 = n[k] * dlo[k], d1 = n[k] * dhi[k];
+        s_lo += std::min(s0, s1), s_hi += std::max(s0, s1);
+        d_lo += std::min(d0, d1), d_hi += std::max(d0, d1);
+        s_mag += std::fabs(n[k]) * (std::fabs(p[k]) + omag[k]);
+        d_mag += std::fabs(n[k]) * dmag[k];
+    }
+    const float s_margin = 4e-6f * s_mag, d_margin = 4e-6f * d_mag;
+    const bool away =
+        (s_hi < -s_margin && d_lo > d_margin) || (s_lo > s_margin && d_hi < -d_margin);
+    return !away;
+}
+
+/// Whether the unbounded object may be hit by a ray of the block (planes: block_may_hit_plane).
+bool block_may_hit_unbounded(const Scene& scene, const BlockBounds& b, const Object& object) {
+    return object.kind != ShapeKind::plane ||
+           block_may_hit_plane(b, object, scene.planes[object.shape]);
+}
+
+/// Ranged traversal of one BVH by a block: leaf(node, first, last) is called with the packets
+/// [first, last] that touch the leaf; test(p, node) is packet p's slab mask for the node.
+template <int W, class Test, class Leaf>
+void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&& test,
+                    Leaf&& leaf) {
+    struct Entry {
+        uint32_t node;
+        uint16_t first, last;  // packets [first, last)
+    };
+    Entry stack[traversal_stack_size];
+    int top = 0;
+    Entry e{0, 0, static_cast<uint16_t>(count)};
+    for (;;) {
+        const BvhNode& node = bvh.nodes[e.node];
+        // first packet that touches the node (interval culling when the first one does not)
+        int f = e.first;
+        bool touched = any(test(f, node));
+        if (!touched && block_may_hit(bounds, node)) {
+            for (++f; f < e.last; ++f) {
+                if (any(test(f, node))) {
+                    touched = true;
+                    break;
+                }
+            }
+        }
+        if (touched) {
+            int l = e.last - 1;  // leaves test each packet of [f, l] anyway
+            if (node.is_leaf()) {
+                leaf(node, f, l);
+            } else {
+                // last packet that touches the node: the children need not look past it
+                while (l > f && !any(test(l, node))) --l;
+                const uint16_t f16 = static_cast<uint16_t>(f), l16 = static_cast<uint16_t>(l + 1);
+                if (bounds.dir_neg[node.axis]) {
+                    stack[top++] = {e.node + 1, f16, l16};
+                    e = {node.index, f16, l16};
+                } else {
+                    stack[top++] = {node.index, f16, l16};
+                    e = {e.node + 1, f16, l16};
+                }
+                continue;
+            }
+        }
+        if (top == 0) break;
+        e = stack[--top];
+    }
+}
+
+}  // namespace
+
+template <int W>
+void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+                             const vmask<W>* active, HitPacket<W>* hits, int count) {
+    for (int p = 0; p < count; ++p) hits[p] = HitPacket<W>{};
+    const BlockBounds bounds = make_block_bounds(rays, active, count);
+    for (uint32_t object : accel.unbounded) {
+        if (!block_may_hit_unbounded(scene, bounds, scene.objects[object])) continue;
+        for (int p = 0; p < count; ++p)
+            if (any(active[p]))
+                intersect_object_closest_from(scene, accel, object, rays[p], active[p], hits[p], 0);
+    }
+    // the BVH: only when the block may meet its root box
+    if (accel.top.nodes.empty() || !block_may_hit(bounds, accel.top.nodes[0])) return;
+    SlabPacket<W> sr[max_block_rays / W];
+    vfloat<W> limit[max_block_rays / W];
+    for (int p = 0; p < count; ++p) {
+        sr[p] = make_slab_ray(rays[p]);
+        limit[p] = t_limit(rays[p], hits[p]);
+    }
+    auto test = [&](int p, const BvhNode& node) {
+        vfloat<W> t_near;
+        return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
+                              vec3(node.hi[0], node.hi[1], node.hi[2]), rays[p].t_min, limit[p],
+                              t_near, active[p]);
+    };
+    WatertightPacket<W> wr[max_block_rays / W];
+    bool wr_ready[max_block_rays / W] = {};
+    traverse_block<W>(accel.top, bounds, count, test, [&](const BvhNode& top_leaf, int f, int l) {
+        for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
+            const uint32_t object_index = accel.top.prim_ids[k];
+            const Object& object = scene.objects[object_index];
+            if (object.kind != ShapeKind::mesh) {
+                for (int p = f; p <= l; ++p) {
+                    const vmask<W> m = test(p, top_leaf);
+                    if (any(m)) {
+                        intersect_object_closest_from(scene, accel, object_index, rays[p], m,
+                                                      hits[p], 0);
+                        limit[p] = t_limit(rays[p], hits[p]);
+                    }
+                }
+                continue;
+            }
+            // a mesh: the same ranged traversal over its own BVH, for packets [f, l]
+            const MeshAccel& mesh = accel.meshes[object.shape];
+            if (mesh.bvh.nodes.empty()) continue;
+            for (int p = f; p <= l; ++p) {
+                if (!wr_ready[p]) fill_watertight_ray(wr[p], rays[p], active[p]);
+                wr_ready[p] = true;
+            }
+            traverse_block<W>(
+                mesh.bvh, bounds, l + 1 - f,
+                [&](int q, const BvhNode& node) { return test(f + q, node); },
+                [&](const BvhNode& leaf, int qf, int ql) {
+                    for (int p = f + qf; p <= f + ql; ++p) {
+                        const vmask<W> m = test(p, leaf);
+                        if (none(m)) continue;
+                        for (uint32_t j = leaf.index; j < leaf.index + leaf.count; ++j) {
+                            const TriangleVerts& tv = mesh.verts[j];
+                            vfloat<W> t(infinity), u(0.0f), v(0.0f);
+                            const vmask<W> h = intersect_triangle(
+                                wr[p], tv.a, tv.b, tv.c, rays[p].t_min, limit[p], t, u, v, m);
+                            if (any(h)) {
+                                const uint32_t prim = mesh.bvh.prim_ids[j];
+                                record(hits[p], better(t, object_index, prim, hits[p], h), t,
+                                       object_index, prim, u, v);
+                                limit[p] = t_limit(rays[p], hits[p]);
+                            }
+                        }
+                    }
+                });
+        }
+    });
+}
+
+template <int W>
+void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+                         const vmask<W>* active, vmask<W>* occluded, int count) {
+    for (int p = 0; p < count; ++p) occluded[p] = mask_and(active[p], mask_not(active[p]));
+    // the bounds of the active rays, also for the BVH (those the unbounded objects occlude are
+    // few: a bound over a few more rays still holds)
+    const BlockBounds bounds = make_block_bounds(rays, active, count);
+    for (uint32_t object : accel.unbounded) {
+        if (!block_may_hit_unbounded(scene, bounds, scene.objects[object])) continue;
+        for (int p = 0; p < count; ++p) {
+            const vmask<W> lanes = mask_andnot(active[p], occluded[p]);
+            if (any(lanes))
+                occluded[p] = mask_or(occluded[p], intersect_object_any_from(scene, accel, object,
+                                                                             rays[p], lanes, 0));
+        }
+    }
+    // the BVH: only when the block may meet its root box
+    if (accel.top.nodes.empty() || !block_may_hit(bounds, accel.top.nodes[0])) return;
+    SlabPacket<W> sr[max_block_rays / W];
+    vmask<W> open[max_block_rays / W];
+    for (int p = 0; p < count; ++p) {
+        sr[p] = make_slab_ray(rays[p]);
+        open[p] = mask_andnot(active[p], occluded[p]);
+    }
+    auto test = [&](int p, const BvhNode& node) {
+        vfloat<W> t_near;
+        return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
+                              vec3(node.hi[0], node.hi[1], node.hi[2]), rays[p].t_min,
+                              rays[p].t_max, t_near, open[p]);
+    };
+    WatertightPacket<W> wr[max_block_rays / W];
+    bool wr_ready[max_block_rays / W] = {};
+    traverse_block<W>(accel.top, bounds, count, test, [&](const BvhNode& top_leaf, int f, int l) {
+        for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
+            const uint32_t object_index = accel.top.prim_ids[k];
+            const Object& object = scene.objects[object_index];
+            if (object.kind != ShapeKind::mesh) {
+                for (int p = f; p <= l; ++p) {
+                    const vmask<W> m = test(p, top_leaf);
+                    if (none(m)) continue;
+                    occluded[p] = mask_or(
+                        occluded[p],
+                        intersect_object_any_from(scene, accel, object_index, rays[p], m, 0));
+                    open[p] = mask_andnot(active[p], occluded[p]);
+                }
+                continue;
+            }
+            const MeshAccel& mesh = accel.meshes[object.shape];
+            if (mesh.bvh.nodes.empty()) continue;
+            for (int p = f; p <= l; ++p) {
+                if (!wr_ready[p]) fill_watertight_ray(wr[p], rays[p], active[p]);
+                wr_ready[p] = true;
+            }
+            traverse_block<W>(
+                mesh.bvh, bounds, l + 1 - f,
+                [&](int q, const BvhNode& node) { return test(f + q, node); },
+                [&](const BvhNode& leaf, int qf, int ql) {
+                    for (int p = f + qf; p <= f + ql; ++p) {
+                        // the open lanes that touch the leaf, less those each triangle occludes
+                        vmask<W> m = test(p, leaf);
+                        for (uint32_t j = leaf.index; j < leaf.index + leaf.count && any(m); ++j) {
+                            const TriangleVerts& tv = mesh.verts[j];
+                            vfloat<W> t(infinity), u(0.0f), v(0.0f);
+                            const vmask<W> h = intersect_triangle(
+                                wr[p], tv.a, tv.b, tv.c, rays[p].t_min, rays[p].t_max, t, u, v, m);
+                            occluded[p] = mask_or(occluded[p], h);
+                            m = mask_andnot(m, h);
+                        }
+                        open[p] = mask_andnot(active[p], occluded[p]);
+                    }
+                });
+        }
+    });
+}
+
+// Instantiations: W = 1 (the packet code at scalar width) and every width this build runs.
+template void intersect_closest_block<1>(const Scene&, const Accel&, const RayPacket<1>*,
+                                         const vmask<1>*, HitPacket<1>*, int);
+template void intersect_any_block<1>(const Scene&, const Accel&, const RayPacket<1>*,
+                                     const vmask<1>*, vmask<1>*, int);
+#if XSIMD_WITH_SSE2
+template void intersect_closest_block<4>(const Scene&, const Accel&, const RayPacket<4>*,
+                                         const vmask<4>*, HitPacket<4>*, int);
+template void intersect_any_block<4>(const Scene&, const Accel&, const RayPacket<4>*,
+                                     const vmask<4>*, vmask<4>*, int);
+#endif
+#if XSIMD_WITH_AVX2
+template void intersect_closest_block<8>(const Scene&, const Accel&, const RayPacket<8>*,
+                                         const vmask<8>*, HitPacket<8>*, int);
+template void intersect_any_block<8>(const Scene&, const Accel&, const RayPacket<8>*,
+                                     const vmask<8>*, vmask<8>*, int);
+#endif
+#if XSIMD_WITH_AVX512F
+template void intersect_closest_block<16>(const Scene&, const Accel&, const RayPacket<16>*,
+                                          const vmask<16>*, HitPacket<16>*, int);
+template void intersect_any_block<16>(const Scene&, const Accel&, const RayPacket<16>*,
+                                      const vmask<16>*, vmask<16>*, int);
+#endif
+
+}  // namespace raylane
