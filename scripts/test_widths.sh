@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# The other packet widths: builds the avx2 (W = 8) and sse4 (W = 4) presets with warnings as
+# errors and runs the tests whose code changes with the instruction set (the simd vocabulary,
+# the shape tests, packet / block / stream traversal against the scalar path, the BVH build,
+# the packet renderer against the scalar one). The release build tests W = 4 and 8 too, but
+# compiled for AVX-512, so the AVX2 and SSE code paths of simd/ (compaction, gathers, stores)
+# and the fall-backs of src/ (the build's partition) only run here. CI runs it after
+# scripts/test.sh.
+#
+#   scripts/test_widths.sh [PRESET...]   default: avx2 sse4
+#
+# Each preset builds into build/<preset>-tests (no benchmarks), beside any full build of it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+presets=("$@")
+[ ${#presets[@]} -gt 0 ] || presets=(avx2 sse4)
+programs=(tests_simd tests_traverse tests_equivalence tests_accel tests_render)
+for preset in "${presets[@]}"; do
+    dir="build/$preset-tests"
+    echo "== $preset (${programs[*]})" >&2
+    cmake --preset "$preset" -B "$dir" -DRAYLANE_WERROR=ON -DRAYLANE_BENCH=OFF >/dev/null
+    cmake --build "$dir" -j "$(nproc)" --target "${programs[@]}"
+    for program in "${programs[@]}"; do
+        "$dir/tests/$program" --gtest_brief=1
+    done
+done
