@@ -1,19 +1,15 @@
-// io: the JSON scene loader (load_scene.h; format: docs/scene-format.md). Parses with a SAX
-// builder that bounds the nesting depth and rejects duplicate keys, then reads the tree strictly.
+// io: the JSON scene loader (load_scene.h; format: docs/scene-format.md): the scene format, read
+// strictly through io/json_reader.h (parsing with a depth limit and no duplicate keys, typed
+// reads whose errors name the JSON path).
 #include "io/load_scene.h"
 
 #include <algorithm>
 #include <cerrno>
-#include <cfloat>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
-#include <iterator>
 #include <limits>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
 #include <system_error>
@@ -21,6 +17,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/json_reader.h"
 #include "io/load_image.h"
 #include "io/load_mesh.h"
 #include "io/model_path.h"
@@ -32,248 +29,13 @@ namespace raylane {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
+using Node = JsonNode;
 
-// ---------------------------------------------------------------------------------------------
-// Message helpers
-
-/// `s` in double quotes, with quotes, backslashes and control characters escaped (one line).
-std::string json_quoted(std::string_view s) {
-    std::string out = "\"";
-    for (char ch : s) {
-        auto c = static_cast<unsigned char>(ch);
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += ch;
-        } else if (c < 0x20 || c == 0x7f) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", unsigned{c});
-            out += buf;
-        } else {
-            out += ch;
-        }
-    }
-    return out + "\"";
-}
-
-/// Bytes outside printable ASCII written as \xNN, so a message stays one printable line.
-std::string printable(std::string_view s) {
-    std::string out;
-    for (char ch : s) {
-        auto c = static_cast<unsigned char>(ch);
-        if (c < 0x20 || c >= 0x7f) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\x%02x", unsigned{c});
-            out += buf;
-        } else {
-            out += ch;
-        }
-    }
-    return out;
-}
-
-std::string format_number(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    return buf;
-}
-
-std::string member_path(const std::string& parent, std::string_view key) {
-    bool plain = !key.empty() && !(key[0] >= '0' && key[0] <= '9');
-    for (char c : key) {
-        plain = plain && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-                          (c >= '0' && c <= '9') || c == '_');
-    }
-    return plain ? parent + "." + std::string(key) : parent + "[" + json_quoted(key) + "]";
-}
-
-std::string element_path(const std::string& parent, size_t index) {
-    return parent + "[" + std::to_string(index) + "]";
-}
-
-std::string describe_type(const Json& j) {
-    if (j.is_object()) return "an object";
-    if (j.is_array()) return "an array";
-    if (j.is_string()) return "a string";
-    if (j.is_boolean()) return "a boolean";
-    if (j.is_number()) return "a number";
-    return "null";
-}
-
-std::string join(const std::vector<std::string>& items, size_t max_items) {
-    std::string out;
-    for (size_t i = 0; i < items.size() && i < max_items; ++i) out += (i ? ", " : "") + items[i];
-    if (items.size() > max_items) out += ", ...";
-    return out.empty() ? "none" : out;
-}
-
-/// 1-based line and column of byte `index` of `text`.
-std::string line_column(std::string_view text, size_t index) {
-    index = std::min(index, text.size());
-    size_t line = 1, line_start = 0;
-    for (size_t i = 0; i < index; ++i) {
-        if (text[i] == '\n') {
-            ++line;
-            line_start = i + 1;
-        }
-    }
-    return std::to_string(line) + ":" + std::to_string(index - line_start + 1);
-}
-
-/// Byte index of the first bracket that opens level `limit + 1`, or npos. Strings are skipped
-/// with their escapes, so the count is exact for any text the JSON lexer accepts up to there.
-size_t find_depth_overflow(std::string_view text, int limit) {
-    int depth = 0;
-    bool in_string = false, escaped = false;
-    for (size_t i = 0; i < text.size(); ++i) {
-        char c = text[i];
-        if (in_string) {
-            if (escaped) {
-                escaped = false;
-            } else if (c == '\\') {
-                escaped = true;
-            } else if (c == '"') {
-                in_string = false;
-            }
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == '[' || c == '{') {
-            if (++depth > limit) return i;
-        } else if (c == ']' || c == '}') {
-            --depth;
-        }
-    }
-    return std::string_view::npos;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Parsing: a SAX handler that builds the DOM (nlohmann's sax_parse is iterative, so the depth
-// limit below is what bounds the recursion of everything that later walks the tree).
-
-class DomBuilder {
+/// The scene format on top of JsonReader's strict typed reads (every error names the JSON path).
+class SceneReader : JsonReader {
   public:
-    using number_integer_t = Json::number_integer_t;
-    using number_unsigned_t = Json::number_unsigned_t;
-    using number_float_t = Json::number_float_t;
-    using string_t = Json::string_t;
-    using binary_t = Json::binary_t;
-
-    Json root;
-    bool too_deep = false;
-    std::string duplicate_key_path;  ///< set when the parse stopped at a repeated key
-    bool syntax_error = false;
-    size_t error_byte = 0;
-    std::string error_message;
-
-    bool null() { return put(Json(nullptr)); }
-    bool boolean(bool v) { return put(Json(v)); }
-    bool number_integer(number_integer_t v) { return put(Json(v)); }
-    bool number_unsigned(number_unsigned_t v) { return put(Json(v)); }
-    bool number_float(number_float_t v, const string_t&) { return put(Json(v)); }
-    bool string(string_t& v) { return put(Json(std::move(v))); }
-    bool binary(binary_t&) { return false; }  // never produced by JSON text
-    bool start_object(size_t) { return open(Json::object()); }
-    bool start_array(size_t) { return open(Json::array()); }
-    bool end_object() { return close(); }
-    bool end_array() { return close(); }
-
-    bool key(string_t& k) {
-        Json& object = *stack_.back();
-        if (object.contains(k)) {
-            duplicate_key_path = member_path(current_path(), k);
-            return false;
-        }
-        pending_ = &object[k];
-        return true;
-    }
-
-    bool parse_error(size_t byte, const std::string&, const nlohmann::detail::exception& e) {
-        syntax_error = true;
-        error_byte = byte;
-        std::string what = e.what();
-        size_t at = what.find("syntax error");
-        if (at == std::string::npos) {
-            at = what.find("] ");
-            at = at == std::string::npos ? 0 : at + 2;
-        }
-        error_message = printable(what.substr(at));
-        return false;
-    }
-
-  private:
-    std::vector<Json*> stack_;  ///< open arrays and objects, outermost first
-    Json* pending_ = nullptr;   ///< slot of the last key read, in the innermost object
-    Json* last_ = nullptr;
-
-    bool put(Json&& v) {
-        if (stack_.empty()) {
-            root = std::move(v);
-            last_ = &root;
-        } else if (stack_.back()->is_array()) {
-            stack_.back()->push_back(std::move(v));
-            last_ = &stack_.back()->back();
-        } else {
-            *pending_ = std::move(v);
-            last_ = pending_;
-        }
-        return true;
-    }
-    bool open(Json&& v) {
-        if (stack_.size() >= size_t{max_scene_json_depth}) {
-            too_deep = true;
-            return false;
-        }
-        put(std::move(v));
-        stack_.push_back(last_);  // the parent does not grow while this child is open
-        return true;
-    }
-    bool close() {
-        stack_.pop_back();
-        return true;
-    }
-    std::string current_path() const {
-        std::string path = "$";
-        for (size_t i = 1; i < stack_.size(); ++i) {
-            const Json& parent = *stack_[i - 1];
-            path = parent.is_array() ? element_path(path, parent.size() - 1)
-                                     : member_path(path, std::prev(parent.end()).key());
-        }
-        return path;
-    }
-};
-
-Json parse_json(std::string_view text, const std::string& file) {
-    DomBuilder builder;
-    bool ok = Json::sax_parse(text.data(), text.data() + text.size(), &builder,
-                              nlohmann::json::input_format_t::json, true, false);
-    if (ok) return std::move(builder.root);
-    if (builder.too_deep) {
-        size_t at = find_depth_overflow(text, max_scene_json_depth);
-        throw InputError(file + ":" + line_column(text, at) + ": JSON nested deeper than " +
-                         std::to_string(max_scene_json_depth) + " levels");
-    }
-    if (!builder.duplicate_key_path.empty()) {
-        throw InputError(file + ": " + builder.duplicate_key_path + ": duplicate key");
-    }
-    size_t index = builder.error_byte > 0 ? builder.error_byte - 1 : 0;  // last byte read
-    throw InputError(file + ":" + line_column(text, index) + ": " +
-                     (builder.syntax_error ? builder.error_message : "malformed JSON"));
-}
-
-// ---------------------------------------------------------------------------------------------
-// Reading the tree
-
-/// A value in the tree and its JSON path ("$.objects[2].radius").
-struct Node {
-    const Json* j;
-    std::string path;
-};
-
-enum class Sign { any, non_negative, positive };
-
-class SceneReader {
-  public:
-    SceneReader(std::string file, std::string dir) : file_(std::move(file)), dir_(std::move(dir)) {}
+    SceneReader(std::string file, std::string dir)
+        : JsonReader(std::move(file)), dir_(std::move(dir)) {}
 
     Scene read(const Json& root) {
         Node top{&root, "$"};
@@ -337,7 +99,6 @@ class SceneReader {
     }
 
   private:
-    std::string file_;
     std::string dir_;
     glm::dvec3 world_origin_{0.0};  ///< the world point stored as (0, 0, 0); set by read_camera
 
@@ -360,110 +121,9 @@ class SceneReader {
     std::map<std::string, int> mesh_uses_;     ///< objects still to read, by resolved path
     std::map<std::string, int32_t> textures_;  ///< texture index by file and options
 
-    [[noreturn]] void fail(const Node& n, const std::string& reason) const {
-        throw InputError(file_ + ": " + n.path + ": " + reason);
-    }
-    void expect(const Node& n, bool ok, const char* what) const {
-        if (!ok) fail(n, std::string("must be ") + what + ", got " + describe_type(*n.j));
-    }
-
-    /// `n` must be an object whose keys are all in `allowed`.
-    void expect_keys(const Node& n, std::initializer_list<std::string_view> allowed) const {
-        expect(n, n.j->is_object(), "an object");
-        for (auto it = n.j->begin(); it != n.j->end(); ++it) {
-            if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
-            std::vector<std::string> names(allowed.begin(), allowed.end());
-            fail(Node{&it.value(), member_path(n.path, it.key())},
-                 "unknown key (expected: " + join(names, names.size()) + ")");
-        }
-    }
-    static const Json* find(const Node& n, std::string_view key) {
-        auto it = n.j->find(std::string(key));
-        return it == n.j->end() ? nullptr : &*it;
-    }
-    Node child(const Node& n, std::string_view key) const {
-        const Json* v = find(n, key);
-        Node c{v, member_path(n.path, key)};
-        if (!v) fail(c, "missing (required)");
-        return c;
-    }
-
-    double number(const Node& n) const {
-        expect(n, n.j->is_number(), "a number");
-        double v = n.j->get<double>();
-        if (!std::isfinite(v)) fail(n, "must be finite");
-        if (std::abs(v) > double(FLT_MAX)) {
-            fail(n, format_number(v) + " is outside the float range");
-        }
-        return v;
-    }
-    /// A number with its sign checked, kept in double (rounded to float where it is stored).
-    double number(const Node& n, Sign sign) const {
-        double v = number(n);
-        if (sign == Sign::positive && !(v > 0.0)) fail(n, "must be > 0, got " + format_number(v));
-        if (sign == Sign::non_negative && v < 0.0) {
-            fail(n, "must be >= 0, got " + format_number(v));
-        }
-        return v;
-    }
-    float real(const Node& n, Sign sign = Sign::any) const {
-        auto v = float(number(n, sign));
-        if (sign == Sign::positive && !(v > 0.0f)) fail(n, "must be > 0 as a float");
-        return v;
-    }
-    int integer(const Node& n, int lo, int hi) const {
-        expect(n, n.j->is_number_integer(), "an integer");
-        std::string range = " an integer from " + std::to_string(lo) + " to " + std::to_string(hi);
-        if (n.j->is_number_unsigned()) {
-            auto v = n.j->get<uint64_t>();
-            if (v < uint64_t(std::max(lo, 0)) || v > uint64_t(hi)) {
-                fail(n, "must be" + range + ", got " + std::to_string(v));
-            }
-            return int(v);
-        }
-        auto v = n.j->get<int64_t>();
-        if (v < lo || v > hi) fail(n, "must be" + range + ", got " + std::to_string(v));
-        return int(v);
-    }
-    bool boolean(const Node& n) const {
-        expect(n, n.j->is_boolean(), "true or false");
-        return n.j->get<bool>();
-    }
-    std::string text(const Node& n) const {
-        expect(n, n.j->is_string(), "a string");
-        return n.j->get<std::string>();
-    }
-    /// Index of the string value in `choices`.
-    int choice(const Node& n, std::initializer_list<const char*> choices) const {
-        std::string s = text(n);
-        std::vector<std::string> names;
-        for (const char* c : choices) {
-            if (s == c) return int(names.size());
-            names.push_back(json_quoted(c));
-        }
-        fail(n, "must be one of " + join(names, names.size()) + ", got " + json_quoted(s));
-    }
-    glm::dvec3 dvec3(const Node& n, Sign sign = Sign::any) const {
-        expect(n, n.j->is_array() && n.j->size() == 3, "an array of 3 numbers");
-        glm::dvec3 v;
-        for (int i = 0; i < 3; ++i) {
-            v[i] = number(Node{&(*n.j)[size_t(i)], element_path(n.path, size_t(i))}, sign);
-        }
-        return v;
-    }
     /// A world-space point, moved so that world_origin_ becomes Raylane's origin (in double,
     /// rounded to float once).
     vec3 point(const Node& n) const { return vec3(dvec3(n) - world_origin_); }
-    /// A point in an object's own space, or an offset between points: not moved.
-    vec3 vector(const Node& n) const { return vec3(dvec3(n)); }
-    vec3 color(const Node& n) const { return vec3(dvec3(n, Sign::non_negative)); }
-    /// A direction, normalised in double; the zero vector is an error.
-    vec3 direction(const Node& n) const {
-        glm::dvec3 v = dvec3(n);
-        double len = glm::length(v);
-        if (!(len > 0.0)) fail(n, "must not be the zero vector");
-        return vec3(v / len);
-    }
 
     Camera read_camera(const Node& n) {
         expect_keys(n, {"position", "look_at", "up", "fov_deg", "fov_axis", "resolution", "spp",
@@ -1146,7 +806,7 @@ class SceneReader {
 }  // namespace
 
 Scene load_scene_from_string(std::string_view json, const std::string& path_for_errors) {
-    Json root = parse_json(json, path_for_errors);
+    Json root = parse_json(json, path_for_errors, max_scene_json_depth);
     std::string dir = std::filesystem::path(path_for_errors).parent_path().string();
     if (dir.empty()) dir = ".";
     return SceneReader(path_for_errors, dir).read(root);
