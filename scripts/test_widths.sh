@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The other packet widths: builds the avx2 (W = 8) and sse4 (W = 4) presets with warnings as
-# errors and runs the tests whose code changes with the instruction set (the simd vocabulary,
-# the shape tests, packet / block / stream traversal against the scalar path, the BVH build,
-# the packet renderer against the scalar one). The release build tests W = 4 and 8 too, but
-# compiled for AVX-512, so the AVX2 and SSE code paths of simd/ (compaction, gathers, stores)
-# and the fall-backs of src/ (the build's partition) only run here. CI runs it after
-# scripts/test.sh.
+# errors and runs the test programs that exercise packet code at each width: the simd
+# vocabulary, packet shapes and packet / block / stream traversal against the scalar path, the
+# packet BRDFs and textures, the stiff and extreme cases, the BVH build, and the packet renderer
+# against the scalar one. The release build tests W = 4 and 8 too, but compiled for the host's
+# widest instruction set (AVX-512 on the CI machine), so the AVX2 and SSE code paths of simd/
+# (compaction, gathers, stores) and the fall-backs of src/ (the build's partition) only run
+# here. CI runs it after scripts/test.sh.
 #
 #   scripts/test_widths.sh [PRESET...]   default: avx2 sse4
 #
@@ -15,7 +16,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 presets=("$@")
 [ ${#presets[@]} -gt 0 ] || presets=(avx2 sse4)
-programs=(tests_simd tests_traverse tests_equivalence tests_accel tests_render)
+programs=(tests_simd tests_equivalence tests_shade tests_numerics tests_accel tests_render)
 for preset in "${presets[@]}"; do
     dir="build/$preset-tests"
     echo "== $preset (${programs[*]})" >&2

@@ -18,8 +18,9 @@ constexpr int bins = 16;
 /// hold 1.8 triangles and the dragon takes 75 bytes per triangle for no faster traversal.
 constexpr float node_cost = 3.0f;
 /// From this depth on the builder halves at the median: a depth of at most 31 + 32 levels for
-/// fewer than 2^32 primitives, inside the traversal's stack of 64.
+/// fewer than 2^32 primitives, inside the traversal's stack.
 constexpr int sah_depth_limit = 31;
+static_assert(sah_depth_limit + 32 <= traversal_stack_size);
 
 /// The bin of centroid coordinate c: (c - lo) * scale clamped to [0, bins - 1] in float, so no
 /// value (NaN included: bin 0) reaches the int conversion out of range.

@@ -13,8 +13,6 @@
 namespace raylane {
 namespace {
 
-constexpr int traversal_stack_entries = 64;  // src/traverse/intersect_*.cpp
-
 BuildParams sah(int leaf = 4) {
     return BuildParams{.max_leaf_size = leaf, .method = BvhBuild::sah};
 }
@@ -87,7 +85,7 @@ TEST(BuildSah, ExtremeMagnitudesKeepTheInvariants) {
             Aabb{vec3(-infinity, float(i), 0.0f), vec3(infinity, float(i) + 1.0f, 1.0f)});
     const Bvh bvh = build_bvh_sah(boxes, sah());
     EXPECT_EQ(check_bvh(bvh, boxes, 4), "");
-    EXPECT_LT(compute_stats(bvh).max_leaf_depth, traversal_stack_entries);
+    EXPECT_LT(compute_stats(bvh).max_leaf_depth, traversal_stack_size);
 }
 
 /// Centroids spaced exponentially (numerics.md §20): every binned split puts almost all of them
@@ -104,9 +102,9 @@ TEST(BuildSah, ExponentialCentroidsStayWithinTheTraversalStack) {
     EXPECT_EQ(check_bvh(bvh, boxes, 4), "");
     const BvhStats st = compute_stats(bvh);
     EXPECT_GT(st.max_leaf_depth, 20);  // the degenerate top is really there
-    EXPECT_LT(st.max_leaf_depth, traversal_stack_entries);
+    EXPECT_LT(st.max_leaf_depth, traversal_stack_size);
     std::printf("[ measured ] SAH build, exponential centroids, n = %zu: depth %d (stack %d)\n", n,
-                st.max_leaf_depth, traversal_stack_entries);
+                st.max_leaf_depth, traversal_stack_size);
 }
 
 /// On the dragon the SAH tree has a lower SAH cost than the median split's, in the same memory

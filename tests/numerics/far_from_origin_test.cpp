@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <random>
 
+#include "accel/bvh.h"
 #include "io/load_scene.h"
 #include "numerics/geometry_support.h"
 #include "render/camera_rays.h"
@@ -16,10 +17,6 @@ namespace raylane {
 namespace {
 
 using namespace geometry_test;
-
-/// Entries of the traversal stacks of intersect_scalar.cpp and intersect_packet.cpp
-/// (`stack_size`, file-local there): a tree deeper than this would overflow them.
-constexpr int traversal_stack_entries = 64;
 
 /// scenes/bunny.json's bunny and floor, everything moved by `shift` (camera, light and plane
 /// included): the same picture in exact arithmetic.
@@ -222,9 +219,9 @@ TEST(FarFromOrigin, ExponentiallySpacedCentroidsDoNotOverflowTheTraversalStack) 
     const BvhStats st = compute_stats(accel.meshes[0].bvh);
     const int bound = int(std::ceil(std::log2(double(n) / 2.0))) + 1;
     EXPECT_LE(st.max_leaf_depth, bound);
-    EXPECT_LT(st.max_leaf_depth, traversal_stack_entries);
+    EXPECT_LT(st.max_leaf_depth, traversal_stack_size);
     std::printf("[ measured ] exponential centroids, n = %u: depth %d (bound %d, stack %d)\n", n,
-                st.max_leaf_depth, bound, traversal_stack_entries);
+                st.max_leaf_depth, bound, traversal_stack_size);
     // rays down -z onto random triangles (a point inside each), and two along the x axis in
     // their plane (edge-on: no hit), through every level of the tree
     std::mt19937 rng(5);
