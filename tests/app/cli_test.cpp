@@ -12,45 +12,18 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_run.h"
+
 namespace {
 
-struct CliRun {
-    int code = -1;
-    std::string out, err;
-};
-
-/// Runs the raylane binary with `args` (a shell fragment), capturing stdout and stderr.
-CliRun run(const std::string& args) {
-    // per test and process: ctest runs the tests of this file in parallel
-    const std::filesystem::path dir = std::filesystem::temp_directory_path();
-    const std::string tag =
-        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-        std::to_string(getpid());
-    const std::string out = (dir / ("raylane_cli_out_" + tag + ".txt")).string();
-    const std::string err = (dir / ("raylane_cli_err_" + tag + ".txt")).string();
-    const std::string cmd = std::string(RAYLANE_BINARY) + " " + args + " >" + out + " 2>" + err;
-    const int status = std::system(cmd.c_str());
-    CliRun r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    auto slurp = [](const std::string& path) {
-        std::ifstream f(path);
-        return std::string(std::istreambuf_iterator<char>(f), {});
-    };
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-}
+using raylane::test::CliRun;
+using raylane::test::lines;
+using raylane::test::run;
 
 std::string temp_file(const std::string& name, const std::string& text) {
     const std::string path = (std::filesystem::temp_directory_path() / name).string();
     std::ofstream(path) << text;
     return path;
-}
-
-size_t lines(const std::string& s) {
-    size_t n = 0;
-    for (char c : s) n += c == '\n';
-    return n;
 }
 
 TEST(Cli, HelpWorksForEveryCommand) {

@@ -1,13 +1,11 @@
-// Tests of render/report.cpp (error against run time) and of `raylane report`
-// (app/report_command.cpp): metrics, fits, interpolation, references, the cache, the sweep, CLI.
+// Tests of render/report.cpp (error against run time): metrics, fits, interpolation, references,
+// the cache, the sweep. The `raylane report` command: tests/app/report_cli_test.cpp.
 #include "render/report.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -37,11 +35,6 @@ fs::path temp_dir() {
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream f(path);
-    return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
 void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
@@ -504,103 +497,6 @@ TEST(ReferenceCache, SavedReferenceLoadsBackAndDamagedFilesAreMisses) {
     save_reference(file, r, "build A");
     write(file + ".txt", "something else\n");
     EXPECT_FALSE(load_reference(file, 5, 3).has_value());
-    fs::remove_all(dir);
-}
-
-// ---------------------------------------------------------------------------------------------
-// The command line
-
-struct CliRun {
-    int code = -1;
-    std::string out, err;
-};
-
-CliRun run(const std::string& args) {
-    const fs::path dir = fs::temp_directory_path();
-    const std::string tag =
-        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-        std::to_string(getpid());
-    const fs::path out = dir / ("raylane_report_out_" + tag),
-                   err = dir / ("raylane_report_err_" + tag);
-    const std::string cmd =
-        std::string(RAYLANE_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
-    const int status = std::system(cmd.c_str());
-    CliRun r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-}
-
-size_t lines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
-
-TEST(ReportCli, BadArgumentsExitTwoWithOneLine) {
-    const std::string scene = RAYLANE_SOURCE_DIR "/scenes/builtin.json";
-    for (const std::string& args :
-         {std::string("report"), std::string("report /no/such/scene.json"),
-          "report " + scene + " --spp-list 0", "report " + scene + " --spp-list 1,x",
-          "report " + scene + " --paths fast", "report " + scene + " --repeats 0",
-          "report " + scene + " --reference-spp 2", "report " + scene + " --width -4",
-          "report " + scene + " --out-dir /proc/raylane"}) {
-        const CliRun r = run(args);
-        EXPECT_EQ(r.code, 2) << args;
-        EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
-        EXPECT_TRUE(r.out.empty()) << args;
-    }
-}
-
-TEST(ReportCli, ReusesTheCachedReferenceUntilTheSceneChanges) {
-    const fs::path dir = temp_dir();
-    const std::string text = slurp(RAYLANE_SOURCE_DIR "/scenes/builtin.json");
-    write(dir / "scene.json", text);
-    const std::string args = "report " + (dir / "scene.json").string() + " --out-dir " +
-                             (dir / "out").string() +
-                             " --width 32 --height 24 --reference-spp 16 --spp-list 1,4 "
-                             "--repeats 1 --threads 1 -q";
-    const CliRun first = run(args);
-    ASSERT_EQ(first.code, 0) << first.out << first.err;
-    EXPECT_NE(first.out.find("saved to"), std::string::npos) << first.out;
-    for (const char* key : {"RMSE", "relMSE", "Var(ref)", "speed-up", "against time"})
-        EXPECT_NE(first.out.find(key), std::string::npos) << key;
-    const CliRun second = run(args);
-    ASSERT_EQ(second.code, 0) << second.err;
-    EXPECT_NE(second.out.find("reused from"), std::string::npos) << second.out;
-    // CSV: a header and one row per (path, samples); the SVG is there
-    const std::string csv = slurp(dir / "out" / "scene.csv");
-    EXPECT_EQ(lines(csv), 1u + 2u * 2u);
-    EXPECT_EQ(csv.rfind("scene,path,knob,samples", 0), 0u);
-    EXPECT_NE(slurp(dir / "out" / "scene.svg").find("<polyline"), std::string::npos);
-    // a changed scene renders a new reference next to the old one
-    write(dir / "scene.json", text + "\n");
-    const CliRun third = run(args);
-    ASSERT_EQ(third.code, 0) << third.err;
-    EXPECT_NE(third.out.find("saved to"), std::string::npos) << third.out;
-    size_t references = 0;
-    for (const auto& e : fs::directory_iterator(dir / "out"))
-        references += e.path().extension() == ".pfm";
-    EXPECT_EQ(references, 2u);
-    fs::remove_all(dir);
-}
-
-TEST(ReportCli, UsesTheAnalyticReferenceWhenTheSceneHasOne) {
-    const fs::path dir = temp_dir();
-    write(dir / "lit_sphere.json",
-          R"({"camera": {"position": [0, 0, -4], "look_at": [0, 0, 0], "fov_deg": 40},
-              "materials": {"m": {"c_d": [0.8, 0.6, 0.4], "k_d": 0.7, "k_s": 0.3}},
-              "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
-              "lights": [{"type": "directional", "direction": [1, 1, -1], "intensity": 0.8}]})");
-    const CliRun r = run("report " + (dir / "lit_sphere.json").string() + " --out-dir " +
-                         (dir / "out").string() +
-                         " --width 32 --height 24 --spp-list 1,4,16 --repeats 1 --paths packet -q");
-    ASSERT_EQ(r.code, 0) << r.out << r.err;
-    EXPECT_NE(r.out.find("analytic (lit sphere"), std::string::npos) << r.out;
-    EXPECT_EQ(r.out.find("Var(ref)"), std::string::npos);
-    size_t references = 0;
-    for (const auto& e : fs::directory_iterator(dir / "out"))
-        references += e.path().extension() == ".pfm";
-    EXPECT_EQ(references, 0u);  // nothing to cache
     fs::remove_all(dir);
 }
 

@@ -18,7 +18,13 @@ struct WidthName {
     }
 };
 
-/// ::testing::Types<Width<1>, Width<4>, ...> for TYPED_TEST_SUITE.
+/// ::testing::Types<Width<1>, Width<4>, ...> for TYPED_TEST_SUITE. Builds configured with
+/// RAYLANE_TEST_WIDTHS=native (scripts/test_widths.sh) take the native width alone: W = 1 and the
+/// narrower widths are the release build's.
+#if defined(RAYLANE_TEST_NATIVE_WIDTH_ONLY)
+using Widths = ::testing::Types<Width<native_width>>;
+#else
 using Widths = supported_widths<::testing::Types>;
+#endif
 
 }  // namespace raylane
