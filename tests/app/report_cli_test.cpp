@@ -1,13 +1,12 @@
 // Tests of `raylane report` (app/report_command.cpp) through the binary: one-line errors, the
 // cached reference, the analytic reference. render/report.cpp itself: tests/render/report_test.cpp.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "app/cli_run.h"
+#include "support/temp_dir.h"
 
 namespace {
 
@@ -16,20 +15,9 @@ using raylane::test::CliRun;
 using raylane::test::lines;
 using raylane::test::run;
 using raylane::test::slurp;
+using raylane::test::write_file;
 
-/// A fresh folder per test and process (ctest runs tests in parallel).
-fs::path temp_dir() {
-    const fs::path dir =
-        fs::temp_directory_path() /
-        ("raylane_report_cli_" +
-         std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-         std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+fs::path temp_dir() { return raylane::test::fresh_temp_dir("raylane_report_cli_"); }
 
 TEST(ReportCli, BadArgumentsExitTwoWithOneLine) {
     const std::string scene = RAYLANE_SOURCE_DIR "/scenes/builtin.json";
@@ -49,7 +37,7 @@ TEST(ReportCli, BadArgumentsExitTwoWithOneLine) {
 TEST(ReportCli, ReusesTheCachedReferenceUntilTheSceneChanges) {
     const fs::path dir = temp_dir();
     const std::string text = slurp(RAYLANE_SOURCE_DIR "/scenes/builtin.json");
-    write(dir / "scene.json", text);
+    write_file(dir / "scene.json", text);
     const std::string args = "report " + (dir / "scene.json").string() + " --out-dir " +
                              (dir / "out").string() +
                              " --width 32 --height 24 --reference-spp 16 --spp-list 1,4 "
@@ -68,7 +56,7 @@ TEST(ReportCli, ReusesTheCachedReferenceUntilTheSceneChanges) {
     EXPECT_EQ(csv.rfind("scene,path,knob,samples", 0), 0u);
     EXPECT_NE(slurp(dir / "out" / "scene.svg").find("<polyline"), std::string::npos);
     // a changed scene renders a new reference next to the old one
-    write(dir / "scene.json", text + "\n");
+    write_file(dir / "scene.json", text + "\n");
     const CliRun third = run(args);
     ASSERT_EQ(third.code, 0) << third.err;
     EXPECT_NE(third.out.find("saved to"), std::string::npos) << third.out;
@@ -81,8 +69,8 @@ TEST(ReportCli, ReusesTheCachedReferenceUntilTheSceneChanges) {
 
 TEST(ReportCli, UsesTheAnalyticReferenceWhenTheSceneHasOne) {
     const fs::path dir = temp_dir();
-    write(dir / "lit_sphere.json",
-          R"({"camera": {"position": [0, 0, -4], "look_at": [0, 0, 0], "fov_deg": 40},
+    write_file(dir / "lit_sphere.json",
+               R"({"camera": {"position": [0, 0, -4], "look_at": [0, 0, 0], "fov_deg": 40},
               "materials": {"m": {"c_d": [0.8, 0.6, 0.4], "k_d": 0.7, "k_s": 0.3}},
               "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}],
               "lights": [{"type": "directional", "direction": [1, 1, -1], "intensity": 0.8}]})");

@@ -3,16 +3,15 @@
 #include "render/report.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
 #include "io/load_scene.h"
+#include "support/temp_dir.h"
 
 namespace raylane {
 namespace {
@@ -25,19 +24,8 @@ Film constant_film(int w, int h, vec3 value) {
     return f;
 }
 
-/// A fresh folder per test and process (ctest runs tests in parallel).
-fs::path temp_dir() {
-    const fs::path dir =
-        fs::temp_directory_path() /
-        ("raylane_report_" +
-         std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-         std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+fs::path temp_dir() { return test::fresh_temp_dir("raylane_report_"); }
+using test::write_file;
 
 // ---------------------------------------------------------------------------------------------
 // Metrics
@@ -442,12 +430,12 @@ TEST(AnalyticReference, MirrorFurnaceIsTheBackgroundEverywhere) {
 
 TEST(ReferenceCache, KeyFollowsTheSceneItsFilesAndTheSettings) {
     const fs::path dir = temp_dir();
-    write(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write_file(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const std::string scene_text =
         R"({"camera": {"position": [0,0,-3], "look_at": [0,0,0], "fov_deg": 60},
             "materials": {"m": {}},
             "objects": [{"shape": "mesh", "file": "tri.obj", "material": "m"}]})";
-    write(dir / "scene.json", scene_text);
+    write_file(dir / "scene.json", scene_text);
     const std::string scene = (dir / "scene.json").string();
     ReferenceParams p;
     const std::string key = reference_cache_key(scene, 32, 24, p);
@@ -466,7 +454,7 @@ TEST(ReferenceCache, KeyFollowsTheSceneItsFilesAndTheSettings) {
     const std::string key2 = reference_cache_key(scene, 32, 24, p);
     EXPECT_NE(key2, key);
     // the scene file changes
-    write(dir / "scene.json", scene_text + " ");
+    write_file(dir / "scene.json", scene_text + " ");
     EXPECT_NE(reference_cache_key(scene, 32, 24, p), key2);
     EXPECT_THROW(reference_cache_key((dir / "missing.json").string(), 32, 24, p), InputError);
     fs::remove_all(dir);
@@ -495,7 +483,7 @@ TEST(ReferenceCache, SavedReferenceLoadsBackAndDamagedFilesAreMisses) {
     fs::resize_file(file, fs::file_size(file) - 4);                               // truncated
     EXPECT_FALSE(load_reference(file, 5, 3).has_value());
     save_reference(file, r, "build A");
-    write(file + ".txt", "something else\n");
+    write_file(file + ".txt", "something else\n");
     EXPECT_FALSE(load_reference(file, 5, 3).has_value());
     fs::remove_all(dir);
 }
