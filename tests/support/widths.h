@@ -1,9 +1,11 @@
-// Test support: typed tests over every packet width this build runs (1, 4, 8, 16).
+// Test support: typed tests over every packet width this build runs (1, 4, 8, 16; without 1 in
+// builds configured with RAYLANE_TEST_WIDTHS=simd).
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <string>
+#include <type_traits>
 
 #include "simd/simd.h"
 
@@ -19,10 +21,13 @@ struct WidthName {
 };
 
 /// ::testing::Types<Width<1>, Width<4>, ...> for TYPED_TEST_SUITE. Builds configured with
-/// RAYLANE_TEST_WIDTHS=native (scripts/test_widths.sh) take the native width alone: W = 1 and the
-/// narrower widths are the release build's.
-#if defined(RAYLANE_TEST_NATIVE_WIDTH_ONLY)
-using Widths = ::testing::Types<Width<native_width>>;
+/// RAYLANE_TEST_WIDTHS=simd (scripts/test_widths.sh) leave out W = 1, the scalar width, which
+/// does not depend on the instruction set and the release build tests.
+#if defined(RAYLANE_TEST_SIMD_WIDTHS_ONLY)
+using Widths =
+    std::conditional_t<width_supported<16>, ::testing::Types<Width<4>, Width<8>, Width<16>>,
+                       std::conditional_t<width_supported<8>, ::testing::Types<Width<4>, Width<8>>,
+                                          ::testing::Types<Width<4>>>>;
 #else
 using Widths = supported_widths<::testing::Types>;
 #endif
