@@ -19,6 +19,8 @@
 
 #include "core/error.h"
 #include "io/read_file.h"
+#include "support/input_error.h"
+#include "support/temp_dir.h"
 
 namespace raylane {
 namespace {
@@ -28,23 +30,17 @@ namespace fs = std::filesystem;
 const std::string shared_dir = RAYLANE_SHARED_DIR;
 
 /// A directory for this process's fixtures, removed at exit.
-struct TempDir {
+struct ProcessTempDir {
     fs::path path = fs::temp_directory_path() / ("raylane_load_image_" + std::to_string(getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() {
+    ProcessTempDir() { fs::create_directories(path); }
+    ~ProcessTempDir() {
         std::error_code error;
         fs::remove_all(path, error);
     }
 };
 std::string temp_file(const std::string& name) {
-    static TempDir dir;
+    static ProcessTempDir dir;
     return (dir.path / name).string();
-}
-
-void write_bytes(const std::string& path, std::string_view bytes) {
-    std::ofstream out(path, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    ASSERT_TRUE(out.good()) << path;
 }
 
 /// Writes an 8-bit PNG with stb_image_write; pixels row 0 = top, `channels` bytes per pixel.
@@ -134,17 +130,6 @@ std::string handmade_png(uint32_t width, uint32_t height, int bit_depth, int col
 
 // errors ------------------------------------------------------------------------------------
 
-template <class F>
-std::string error_of(F load) {
-    try {
-        load();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError thrown";
-    return "";
-}
-
 /// One line, starting with "name: ", containing `part`.
 void expect_error(const std::string& message, const std::string& name, const std::string& part) {
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
@@ -153,12 +138,12 @@ void expect_error(const std::string& message, const std::string& name, const std
 }
 
 void expect_file_error(const std::string& path, const std::string& part) {
-    expect_error(error_of([&] { load_texture(path); }), path, part);
+    expect_error(test::input_error_of([&] { load_texture(path); }), path, part);
 }
 
 void expect_memory_error(std::string_view bytes, const std::string& part) {
-    expect_error(error_of([&] { load_texture_from_memory(bytes, "bytes.png"); }), "bytes.png",
-                 part);
+    expect_error(test::input_error_of([&] { load_texture_from_memory(bytes, "bytes.png"); }),
+                 "bytes.png", part);
 }
 
 // the shipped images ------------------------------------------------------------------------
@@ -304,7 +289,7 @@ TEST(LoadTexture, Reads16BitPngsWithSixteenBits) {
         scanline += static_cast<char>(s & 0xff);
     }
     const std::string path = temp_file("sixteen.png");
-    write_bytes(path, handmade_png(2, 1, 16, 2, scanline));
+    test::write_bytes(path, handmade_png(2, 1, 16, 2, scanline));
     const Texture t = load_texture(path);
     ASSERT_EQ(t.texels.size(), 6u);
     for (int i = 0; i < 6; ++i)
@@ -362,14 +347,14 @@ TEST(LoadTexture, RejectsADeviceWithoutReadingIt) {
 
 TEST(LoadTexture, RejectsAnEmptyFile) {
     const std::string path = temp_file("empty.png");
-    write_bytes(path, "");
+    test::write_bytes(path, "");
     expect_file_error(path, "empty file");
 }
 
 TEST(LoadTexture, RejectsBytesThatAreNoImage) {
     const std::string path = temp_file("garbage.png");
     const std::vector<uint8_t> noise = random_bytes(3000, 1);
-    write_bytes(path, std::string(noise.begin(), noise.end()));
+    test::write_bytes(path, std::string(noise.begin(), noise.end()));
     expect_file_error(path, "not a PNG, JPEG or Radiance HDR image");
     expect_memory_error("just some text\nnot an image at all\n", "not a PNG, JPEG or Radiance");
     expect_memory_error("GIF89a\x01\x00\x01\x00\x00\x00\x00", "not a PNG, JPEG or Radiance");
@@ -386,7 +371,7 @@ TEST(LoadTexture, RejectsTruncatedPngs) {
                         full.size() - 13, full.size() - 12}) {
         SCOPED_TRACE(keep);
         const std::string path = temp_file("cut_" + std::to_string(keep) + ".png");
-        write_bytes(path, std::string_view(full).substr(0, keep));
+        test::write_bytes(path, std::string_view(full).substr(0, keep));
         expect_file_error(path, "");
     }
     const std::string real = read_file(shared_dir + "/textures/Tiles074_1K_Color.png");
@@ -563,7 +548,7 @@ TEST(LoadTexture, RejectsHugeHeadersBeforeDecoding) {
         put32(dims, size.height);
         patched.replace(16, 8, dims);
         const std::string path = temp_file("huge.png");
-        write_bytes(path, patched);
+        test::write_bytes(path, patched);
         expect_file_error(path, "over the limit");
     }
     // a Radiance header too
@@ -575,7 +560,8 @@ TEST(LoadTexture, RejectsHugeHeadersBeforeDecoding) {
     put32(dims, 8192);
     put32(dims, 8192);
     patched.replace(16, 8, dims);
-    const std::string message = error_of([&] { load_texture_from_memory(patched, "max.png"); });
+    const std::string message =
+        test::input_error_of([&] { load_texture_from_memory(patched, "max.png"); });
     EXPECT_EQ(message.find("over the limit"), std::string::npos) << message;
 }
 

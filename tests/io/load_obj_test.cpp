@@ -14,31 +14,18 @@
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/load_ply.h"
+#include "support/input_error.h"
 
 namespace raylane {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string models_dir = RAYLANE_SHARED_DIR "/models";
-
 Mesh obj(std::string_view text) { return load_obj_from_memory(text, "test.obj"); }
-
-/// The message of the InputError `load` throws ("" and a test failure if it throws none).
-template <class F>
-std::string error_of(F load) {
-    try {
-        load();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError thrown";
-    return "";
-}
 
 /// Checks that loading `text` fails with a one-line message holding every part of `parts`.
 void expect_obj_error(std::string_view text, std::initializer_list<std::string_view> parts) {
-    std::string message = error_of([&] { obj(text); });
+    std::string message = test::input_error_of([&] { obj(text); });
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     for (std::string_view part : parts) {
         EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
@@ -194,7 +181,7 @@ TEST(LoadObj, LoadsFromDiskAndNamesTheMeshAfterTheFile) {
 // shipped models -------------------------------------------------------------------------
 
 TEST(LoadObj, ReadsTheDragon) {
-    const std::string path = models_dir + "/dragon.obj";
+    const std::string path = test::models_dir + "/dragon.obj";
     if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
     Mesh m = load_obj(path);
     EXPECT_EQ(m.name, "dragon.obj");
@@ -226,8 +213,8 @@ double surface_area(const Mesh& m) {
 }
 
 TEST(LoadObj, DragonObjMatchesDragonPlyUnderTheDocumentedTransform) {
-    const std::string obj_path = models_dir + "/dragon.obj";
-    const std::string ply_path = models_dir + "/dragon.ply";
+    const std::string obj_path = test::models_dir + "/dragon.obj";
+    const std::string ply_path = test::models_dir + "/dragon.ply";
     if (!fs::exists(obj_path) || !fs::exists(ply_path)) GTEST_SKIP() << "dragon files not present";
     Mesh from_obj = load_obj(obj_path);
     Mesh from_ply = load_ply(ply_path);
@@ -248,7 +235,7 @@ TEST(LoadObj, DragonObjMatchesDragonPlyUnderTheDocumentedTransform) {
 }
 
 TEST(LoadObj, ReadsTheAppleWithUvsAndNormals) {
-    const std::string path = models_dir + "/apple/food_apple_01_4k.obj";
+    const std::string path = test::models_dir + "/apple/food_apple_01_4k.obj";
     if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
     Mesh m = load_obj(path);
     EXPECT_EQ(m.positions.size(), 3504u);
@@ -263,7 +250,7 @@ TEST(LoadObj, ReadsTheAppleWithUvsAndNormals) {
 }
 
 TEST(LoadObj, ReadsTheCornellBoxQuadsWithNegativeIndices) {
-    const std::string path = models_dir + "/cornell_box/CornellBox-Original.obj";
+    const std::string path = test::models_dir + "/cornell_box/CornellBox-Original.obj";
     if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
     Mesh m = load_obj(path);
     EXPECT_EQ(m.positions.size(), 72u);
@@ -333,10 +320,11 @@ TEST(LoadObjErrors, RejectsAFileWithoutFaces) {
 }
 
 TEST(LoadObjErrors, NamesAMissingFile) {
-    std::string message = error_of([] { load_obj("/nonexistent/raylane/missing.obj"); });
+    std::string message =
+        test::input_error_of([] { load_obj("/nonexistent/raylane/missing.obj"); });
     EXPECT_NE(message.find("/nonexistent/raylane/missing.obj"), std::string::npos) << message;
     EXPECT_NE(message.find("cannot read"), std::string::npos) << message;
-    message = error_of([] { load_mesh("/nonexistent/raylane/missing.ply"); });
+    message = test::input_error_of([] { load_mesh("/nonexistent/raylane/missing.ply"); });
     EXPECT_NE(message.find("missing.ply: cannot read"), std::string::npos) << message;
 }
 
@@ -344,17 +332,17 @@ TEST(LoadObjErrors, ReportsADirectoryGivenAsAFile) {
     const std::string dir =
         fs::temp_directory_path() / ("raylane_dir_" + std::to_string(::getpid()) + ".obj");
     fs::create_directories(dir);
-    std::string message = error_of([&] { load_mesh(dir); });
+    std::string message = test::input_error_of([&] { load_mesh(dir); });
     fs::remove_all(dir);
     EXPECT_NE(message.find(dir + ": cannot read"), std::string::npos) << message;
     EXPECT_NE(message.find("directory"), std::string::npos) << message;
 }
 
 TEST(LoadObjErrors, LoadMeshRejectsUnknownExtensions) {
-    std::string message = error_of([] { load_mesh("models/teapot.stl"); });
+    std::string message = test::input_error_of([] { load_mesh("models/teapot.stl"); });
     EXPECT_NE(message.find("models/teapot.stl"), std::string::npos) << message;
     EXPECT_NE(message.find("unsupported mesh format '.stl'"), std::string::npos) << message;
-    message = error_of([] { load_mesh("models/teapot"); });
+    message = test::input_error_of([] { load_mesh("models/teapot"); });
     EXPECT_NE(message.find("no extension"), std::string::npos) << message;
 }
 

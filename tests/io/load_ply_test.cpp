@@ -14,29 +14,17 @@
 #include <vector>
 
 #include "core/error.h"
+#include "support/input_error.h"
 
 namespace raylane {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string models_dir = RAYLANE_SHARED_DIR "/models";
-
 Mesh ply(std::string_view bytes) { return load_ply_from_memory(bytes, "test.ply"); }
 
-template <class F>
-std::string error_of(F load) {
-    try {
-        load();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError thrown";
-    return "";
-}
-
 void expect_ply_error(std::string_view bytes, std::initializer_list<std::string> parts) {
-    std::string message = error_of([&] { ply(bytes); });
+    std::string message = test::input_error_of([&] { ply(bytes); });
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     for (const std::string& part : parts) {
         EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
@@ -293,7 +281,7 @@ TEST(LoadPly, IgnoresBytesAfterTheLastBinaryElement) {
 // shipped models -------------------------------------------------------------------------
 
 TEST(LoadPly, ReadsTheBinaryDragon) {
-    const std::string path = models_dir + "/dragon.ply";
+    const std::string path = test::models_dir + "/dragon.ply";
     if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
     Mesh m = load_ply(path);
     EXPECT_EQ(m.name, "dragon.ply");
@@ -316,7 +304,7 @@ TEST(LoadPly, ReadsTheBinaryDragon) {
 }
 
 TEST(LoadPly, ReadsTheAsciiBunny) {
-    const std::string path = models_dir + "/bunny.ply";
+    const std::string path = test::models_dir + "/bunny.ply";
     if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
     Mesh m = load_ply(path);
     EXPECT_EQ(m.positions.size(), 35947u);
@@ -493,7 +481,7 @@ TEST(LoadPlyErrors, RejectsNonFiniteBinaryVertices) {
 }
 
 TEST(LoadPlyErrors, NamesAMissingFile) {
-    std::string message = error_of([] { load_ply("/nonexistent/raylane/gone.ply"); });
+    std::string message = test::input_error_of([] { load_ply("/nonexistent/raylane/gone.ply"); });
     EXPECT_NE(message.find("/nonexistent/raylane/gone.ply: cannot read"), std::string::npos)
         << message;
 }

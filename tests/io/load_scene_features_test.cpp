@@ -14,17 +14,17 @@
 namespace raylane {
 namespace {
 
-const char* const camera_json =
+const char* const features_camera =
     R"("camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "fov_deg": 60})";
 
-Scene load(const std::string& members) {
-    return load_scene_from_string(std::string("{") + camera_json + ", " + members + "}",
+Scene load_members(const std::string& members) {
+    return load_scene_from_string(std::string("{") + features_camera + ", " + members + "}",
                                   std::string(RAYLANE_SOURCE_DIR) + "/scenes/test.json");
 }
 
-std::string error_of(const std::string& members) {
+std::string members_error(const std::string& members) {
     try {
-        load(members);
+        load_members(members);
     } catch (const InputError& e) {
         const std::string message = e.what();
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
@@ -35,7 +35,7 @@ std::string error_of(const std::string& members) {
 }
 
 TEST(LoadSceneFeatures, ReadsMirrorAndGlassMaterials) {
-    const Scene s = load(R"("materials": {
+    const Scene s = load_members(R"("materials": {
         "m": {"reflection": 0.5, "k_a_after": 1, "fresnel": false},
         "g": {"refraction": {"ior": 1.33, "filter": [1, 0.9, 0.8]}}})");
     ASSERT_EQ(s.materials.size(), 2u);
@@ -49,22 +49,23 @@ TEST(LoadSceneFeatures, ReadsMirrorAndGlassMaterials) {
 }
 
 TEST(LoadSceneFeatures, PresetsSetTheFittedParametersOfTheModel) {
-    const Scene s = load(R"("materials": {"n": {"model": "ward", "preset": "nickel"},
+    const Scene s = load_members(R"("materials": {"n": {"model": "ward", "preset": "nickel"},
                                           "d": {"model": "blinn-phong", "preset": "delrin"}})");
     EXPECT_EQ(s.materials[0].model, SpecularModel::ward);
     EXPECT_FLOAT_EQ(s.materials[0].alpha, 0.0432f);
     EXPECT_FLOAT_EQ(s.materials[0].c_s.x, 0.204f);
     EXPECT_EQ(s.materials[1].model, SpecularModel::blinn_phong);
     EXPECT_FLOAT_EQ(s.materials[1].exponent, 83.4f);
-    EXPECT_NE(error_of(R"("materials": {"p": {"model": "phong", "preset": "nickel"}})")
+    EXPECT_NE(members_error(R"("materials": {"p": {"model": "phong", "preset": "nickel"}})")
                   .find("$.materials.p.preset: no fitted"),
               std::string::npos);
-    EXPECT_NE(error_of(R"("materials": {"p": {"model": "ward", "preset": "gold"}})").find("gold"),
-              std::string::npos);
+    EXPECT_NE(
+        members_error(R"("materials": {"p": {"model": "ward", "preset": "gold"}})").find("gold"),
+        std::string::npos);
 }
 
 TEST(LoadSceneFeatures, AreaLightsAddAVisibleEmitterThatCastsNoShadow) {
-    const Scene s = load(R"("lights": [
+    const Scene s = load_members(R"("lights": [
         {"type": "box", "min": [-3, 5.5, 11], "max": [-2, 9.5, 11], "intensity": 400,
          "samples": 25},
         {"type": "rect", "corner": [0, 2, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 2],
@@ -84,17 +85,17 @@ TEST(LoadSceneFeatures, AreaLightsAddAVisibleEmitterThatCastsNoShadow) {
     EXPECT_TRUE(box.emissive());
     const Material& rect = s.materials[s.objects[1].material];
     EXPECT_NEAR(rect.emission.y, 10.0 / (4.0 * std::numbers::pi * 4.0), 1e-6);
-    EXPECT_NE(error_of(R"("lights": [{"type": "rect", "corner": [0, 0, 0], "edge_u": [1, 0, 0],
+    EXPECT_NE(members_error(R"("lights": [{"type": "rect", "corner": [0, 0, 0], "edge_u": [1, 0, 0],
                                      "edge_v": [2, 0, 0]}])")
                   .find("$.lights[0].edge_v: the rectangle has zero area"),
               std::string::npos);
-    EXPECT_NE(error_of(R"("lights": [{"type": "point", "position": [0, 0, 0], "samples": 4}])")
+    EXPECT_NE(members_error(R"("lights": [{"type": "point", "position": [0, 0, 0], "samples": 4}])")
                   .find("$.lights[0].samples: unknown key"),
               std::string::npos);
 }
 
 TEST(LoadSceneFeatures, ReadsTheLensTheShadingOptionsAndTheTonemap) {
-    const Scene s = load(R"("shading": {"brdf": "report", "max_reflection_depth": 50,
+    const Scene s = load_members(R"("shading": {"brdf": "report", "max_reflection_depth": 50,
                                          "local": false, "reflected_color": [1, 0, 1]},
                             "tonemap": "report")");
     EXPECT_EQ(s.shading.brdf, BrdfScaling::report);
@@ -110,13 +111,13 @@ TEST(LoadSceneFeatures, ReadsTheLensTheShadingOptionsAndTheTonemap) {
         "lens.json");
     EXPECT_FLOAT_EQ(lens.camera.lens_radius, 0.25f);
     EXPECT_FLOAT_EQ(lens.camera.focal_distance, 7.0f);
-    EXPECT_NE(error_of(R"("shading": {"max_reflection_depth": 1000})")
+    EXPECT_NE(members_error(R"("shading": {"max_reflection_depth": 1000})")
                   .find("$.shading.max_reflection_depth: must be an integer from 0 to 64"),
               std::string::npos);
 }
 
 TEST(LoadSceneFeatures, TexturesAreLoadedOnceAndMissingOnesNameWhereItLooked) {
-    const Scene s = load(R"("environment": {"file": "envMap2.jpg", "filter": "nearest"},
+    const Scene s = load_members(R"("environment": {"file": "envMap2.jpg", "filter": "nearest"},
         "materials": {"a": {"texture": "apple_texture.jpg", "texture_specular": true},
                       "b": {"texture": "apple_texture.jpg"},
                       "c": {"texture": {"checker": [[1, 1, 1], [0, 0, 0]], "checks": 4}}})");
@@ -124,21 +125,21 @@ TEST(LoadSceneFeatures, TexturesAreLoadedOnceAndMissingOnesNameWhereItLooked) {
     EXPECT_EQ(s.materials[0].texture, s.materials[1].texture);
     EXPECT_EQ(s.textures[size_t(s.environment)].filter, TextureFilter::nearest);
     EXPECT_EQ(s.textures[size_t(s.materials[2].texture)].kind, TextureKind::checker);
-    const std::string e = error_of(R"("materials": {"a": {"texture": "no_such.png"}})");
+    const std::string e = members_error(R"("materials": {"a": {"texture": "no_such.png"}})");
     EXPECT_NE(e.find("$.materials.a.texture: no_such.png: model not found; looked in"),
               std::string::npos)
         << e;
 }
 
 TEST(LoadSceneFeatures, FeaturesListWhatTheSceneUses) {
-    const Scene plain = load(R"("materials": {"m": {}},
+    const Scene plain = load_members(R"("materials": {"m": {}},
         "objects": [{"shape": "sphere", "radius": 1, "material": "m"}],
         "lights": [{"type": "point", "position": [0, 5, 0]}])");
     const uint32_t f = scene_features(plain);
     EXPECT_EQ(f & kernel_features_all, 0u);
     EXPECT_NE(f & feature_point_lights, 0u);
     EXPECT_NE(f & feature_analytic_shapes, 0u);
-    const Scene rich = load(R"("materials": {"g": {"refraction": {}},
+    const Scene rich = load_members(R"("materials": {"g": {"refraction": {}},
                                              "s": {"model": "glossy-phong"}},
         "lights": [{"type": "disk", "center": [0, 3, 0], "normal": [0, -1, 0], "radius": 1}])");
     const uint32_t r = scene_features(rich);

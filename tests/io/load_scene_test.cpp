@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "io/model_path.h"
 #include "scene/transform.h"
+#include "support/temp_dir.h"
 
 namespace raylane {
 namespace {
@@ -31,7 +32,7 @@ std::string scene_with(const std::string& members) {
 }
 
 /// The message of the InputError that loading `json` throws ("" and a test failure if none).
-std::string error_of(const std::string& json, const std::string& path = "scenes/bad.json") {
+std::string scene_error(const std::string& json, const std::string& path = "scenes/bad.json") {
     try {
         load_scene_from_string(json, path);
     } catch (const InputError& e) {
@@ -42,28 +43,6 @@ std::string error_of(const std::string& json, const std::string& path = "scenes/
     ADD_FAILURE() << "no InputError for: " << json;
     return "";
 }
-
-/// Writes `text` to `path`, creating folders.
-void write_file(const fs::path& path, const std::string& text) {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-/// A fresh temporary folder, removed at the end of the test.
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path = fs::temp_directory_path() /
-               ("raylane_load_scene_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 /// True when find_model locates `name` from `dir` (the shared models may be absent).
 bool model_available(const std::string& name, const std::string& dir) {
@@ -355,7 +334,7 @@ TEST(LoadScene, NamesTheFileAndTheJsonPathOfEveryBadValue) {
     };
     for (const BadCase& c : cases) {
         std::string expected = std::string("scenes/bad.json: ") + c.path + ": " + c.reason;
-        std::string got = error_of(scene_with(c.members));
+        std::string got = scene_error(scene_with(c.members));
         EXPECT_EQ(got.substr(0, expected.size()), expected) << "for " << c.members;
     }
 }
@@ -401,46 +380,46 @@ TEST(LoadScene, NamesTheJsonPathOfBadCameraValues) {
     };
     for (const CameraCase& c : cases) {
         std::string expected = std::string("scenes/bad.json: ") + c.path + ": " + c.reason;
-        std::string got = error_of(std::string(R"({"camera": )") + c.camera + "}");
+        std::string got = scene_error(std::string(R"({"camera": )") + c.camera + "}");
         EXPECT_EQ(got.substr(0, expected.size()), expected) << "for " << c.camera;
     }
-    EXPECT_EQ(error_of("{}"), "scenes/bad.json: $.camera: missing (required)");
-    EXPECT_EQ(error_of("[]"), "scenes/bad.json: $: must be an object, got an array");
+    EXPECT_EQ(scene_error("{}"), "scenes/bad.json: $.camera: missing (required)");
+    EXPECT_EQ(scene_error("[]"), "scenes/bad.json: $: must be an object, got an array");
 }
 
 TEST(LoadScene, RejectsDuplicateKeysWithTheirPath) {
-    EXPECT_EQ(error_of(R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1],
+    EXPECT_EQ(scene_error(R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 1],
                                       "fov_deg": 60, "fov_deg": 70}})"),
               "scenes/bad.json: $.camera.fov_deg: duplicate key");
-    EXPECT_EQ(error_of(scene_with(R"("objects": [{"shape": "box"}, {"shape": "sphere",
+    EXPECT_EQ(scene_error(scene_with(R"("objects": [{"shape": "box"}, {"shape": "sphere",
                                       "radius": 1, "radius": 2}])")),
               "scenes/bad.json: $.objects[1].radius: duplicate key");
 }
 
 TEST(LoadScene, GivesLineAndColumnForMalformedJson) {
-    std::string got = error_of("{\n  \"camera\": tru\n}");
+    std::string got = scene_error("{\n  \"camera\": tru\n}");
     EXPECT_EQ(got.rfind("scenes/bad.json:2:", 0), 0u) << got;
     EXPECT_NE(got.find("syntax error"), std::string::npos) << got;
 
-    got = error_of("{\"camera\": {\"fov_deg\": NaN}}");
+    got = scene_error("{\"camera\": {\"fov_deg\": NaN}}");
     EXPECT_EQ(got.rfind("scenes/bad.json:1:", 0), 0u) << got;
 
-    got = error_of(scene_with(R"("background": [1e400, 0, 0])"));
+    got = scene_error(scene_with(R"("background": [1e400, 0, 0])"));
     EXPECT_EQ(got.rfind("scenes/bad.json:1:", 0), 0u) << got;
     EXPECT_NE(got.find("number overflow"), std::string::npos) << got;
 
-    got = error_of("");
+    got = scene_error("");
     EXPECT_EQ(got.rfind("scenes/bad.json:1:1: ", 0), 0u) << got;
 
-    got = error_of(scene_with("") + " trailing");
+    got = scene_error(scene_with("") + " trailing");
     EXPECT_EQ(got.rfind("scenes/bad.json:1:", 0), 0u) << got;
 
-    got = error_of("{\"camera\": \"\xff\xfe\"}");  // invalid UTF-8: still one printable line
+    got = scene_error("{\"camera\": \"\xff\xfe\"}");  // invalid UTF-8: still one printable line
     for (char c : got) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << got;
 }
 
 TEST(LoadScene, KeepsKeysWithControlCharactersOnOneLine) {
-    std::string got = error_of(scene_with(R"("bad\nkey": 1)"));
+    std::string got = scene_error(scene_with(R"("bad\nkey": 1)"));
     EXPECT_EQ(
         got,
         R"(scenes/bad.json: $["bad\u000akey"]: unknown key (expected: version, )"
@@ -453,7 +432,7 @@ TEST(LoadScene, RejectsDeepNestingQuicklyWithoutCrashing) {
         std::string text;
         for (int i = 0; i < 100000; ++i) text += open;
         auto start = std::chrono::steady_clock::now();
-        std::string got = error_of(text);
+        std::string got = scene_error(text);
         double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         size_t column = open.size() * size_t(max_scene_json_depth) + 1;
@@ -467,15 +446,15 @@ TEST(LoadScene, AcceptsNestingUpToTheLimit) {
     // The root object is level 1, so "objects": followed by n brackets reaches level 1 + n.
     auto nested = [](int n) { return std::string(size_t(n), '[') + std::string(size_t(n), ']'); };
     for (int n : {max_scene_json_depth - 2, max_scene_json_depth - 1}) {
-        EXPECT_EQ(error_of(scene_with("\"objects\": " + nested(n))),
+        EXPECT_EQ(scene_error(scene_with("\"objects\": " + nested(n))),
                   "scenes/bad.json: $.objects[0]: must be an object, got an array");
     }
-    std::string too_deep = error_of(scene_with("\"objects\": " + nested(max_scene_json_depth)));
+    std::string too_deep = scene_error(scene_with("\"objects\": " + nested(max_scene_json_depth)));
     EXPECT_NE(too_deep.find("JSON nested deeper than 64 levels"), std::string::npos) << too_deep;
 }
 
 TEST(LoadScene, ReportsUnreadableFiles) {
-    TempDir dir;
+    test::TempDir dir("raylane_load_scene_");
     std::string missing = (dir.path / "missing.json").string();
     try {
         load_scene(missing);
@@ -490,7 +469,7 @@ TEST(LoadScene, ReportsUnreadableFiles) {
         EXPECT_EQ(std::string(e.what()).rfind(dir.path.string() + ": cannot read", 0), 0u)
             << e.what();
     }
-    write_file(dir.path / "bad.json", "{\"camera\": 1}");
+    test::write_file(dir.path / "bad.json", "{\"camera\": 1}");
     std::string bad = (dir.path / "bad.json").string();
     try {
         load_scene(bad);
@@ -509,9 +488,9 @@ const char* const quad_obj =
     "f 1//1 2//1 3//1\nf 1//1 3//1 4//1\n";
 
 TEST(LoadScene, FitsThenTransformsAndBakesMeshes) {
-    TempDir dir;
-    write_file(dir.path / "quad.obj", quad_obj);
-    write_file(dir.path / "s.json", scene_with(R"("objects": [
+    test::TempDir dir("raylane_load_scene_");
+    test::write_file(dir.path / "quad.obj", quad_obj);
+    test::write_file(dir.path / "s.json", scene_with(R"("objects": [
         {"shape": "mesh", "file": "quad.obj",
          "fit": {"size": 1, "axis": "x", "offset": [0, 0.5, 0]},
          "transform": {"translate": [10, 0, 0]}},
@@ -546,9 +525,9 @@ TEST(LoadScene, FitsThenTransformsAndBakesMeshes) {
 // The last object that names a file takes the loaded mesh instead of a copy (load_scene.cpp,
 // read_mesh), counted by the resolved path: a file named two ways is one file.
 TEST(LoadScene, GivesEveryObjectOfAFileTheWholeMesh) {
-    TempDir dir;
-    write_file(dir.path / "quad.obj", quad_obj);
-    write_file(dir.path / "s.json", scene_with(R"("objects": [
+    test::TempDir dir("raylane_load_scene_");
+    test::write_file(dir.path / "quad.obj", quad_obj);
+    test::write_file(dir.path / "s.json", scene_with(R"("objects": [
         {"shape": "mesh", "file": "quad.obj"},
         {"shape": "mesh", "file": "./quad.obj"},
         {"shape": "mesh", "file": "quad.obj", "transform": {"translate": [1, 0, 0]}},
@@ -565,9 +544,9 @@ TEST(LoadScene, GivesEveryObjectOfAFileTheWholeMesh) {
 }
 
 TEST(LoadScene, NamesTheJsonPathOfBadFits) {
-    TempDir dir;
-    write_file(dir.path / "quad.obj", quad_obj);
-    write_file(dir.path / "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
+    test::TempDir dir("raylane_load_scene_");
+    test::write_file(dir.path / "quad.obj", quad_obj);
+    test::write_file(dir.path / "flat.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n");
     const BadCase cases[] = {
         {R"("objects": [{"shape": "mesh", "file": "quad.obj", "fit": {"size": 1, "scale": 2}}])",
          "$.objects[0].fit.scale", "give either size or scale"},
@@ -585,18 +564,18 @@ TEST(LoadScene, NamesTheJsonPathOfBadFits) {
     std::string scene_path = (dir.path / "bad.json").string();
     for (const BadCase& c : cases) {
         std::string expected = scene_path + ": " + c.path + ": " + c.reason;
-        std::string got = error_of(scene_with(c.members), scene_path);
+        std::string got = scene_error(scene_with(c.members), scene_path);
         EXPECT_EQ(got.substr(0, expected.size()), expected) << "for " << c.members;
     }
 }
 
 TEST(LoadScene, GivesTheModelSearchMessageWhenAMeshIsMissing) {
-    TempDir dir;
+    test::TempDir dir("raylane_load_scene_");
     std::string scene_path = (dir.path / "s.json").string();
-    std::string got = error_of(scene_with(R"("objects": [
+    std::string got = scene_error(scene_with(R"("objects": [
         {"shape": "sphere", "radius": 1},
         {"shape": "mesh", "file": "no_such_model_4711.ply"}])"),
-                               scene_path);
+                                  scene_path);
     std::string prefix = scene_path + ": $.objects[1].file: ";
     EXPECT_EQ(got.rfind(prefix, 0), 0u) << got;
     EXPECT_NE(got.find("no_such_model_4711.ply"), std::string::npos) << got;
@@ -604,11 +583,11 @@ TEST(LoadScene, GivesTheModelSearchMessageWhenAMeshIsMissing) {
 }
 
 TEST(LoadScene, PassesABrokenMeshFilesErrorThrough) {
-    TempDir dir;
-    write_file(dir.path / "broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
+    test::TempDir dir("raylane_load_scene_");
+    test::write_file(dir.path / "broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
     std::string scene_path = (dir.path / "s.json").string();
-    std::string got =
-        error_of(scene_with(R"("objects": [{"shape": "mesh", "file": "broken.obj"}])"), scene_path);
+    std::string got = scene_error(
+        scene_with(R"("objects": [{"shape": "mesh", "file": "broken.obj"}])"), scene_path);
     EXPECT_NE(got.find("broken.obj"), std::string::npos) << got;
     EXPECT_EQ(got.rfind(scene_path, 0), std::string::npos) << "the mesh's own message: " << got;
 }

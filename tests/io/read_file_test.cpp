@@ -13,35 +13,19 @@
 #include <thread>
 
 #include "core/error.h"
+#include "support/temp_dir.h"
 
 namespace raylane {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        path = fs::temp_directory_path() / ("raylane_read_file_" + std::to_string(::getpid()));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
-
-void write_bytes(const fs::path& path, const std::string& bytes) {
-    std::ofstream out(path, std::ios::binary);
-    out << bytes;
-}
-
 TEST(MapFile, GivesARegularFilesBytesUnchanged) {
-    TempDir dir;
+    test::TempDir dir("raylane_read_file_");
     std::string bytes = "ply\r\nformat binary_little_endian 1.0\n";
     bytes += std::string("\0\x01\xff\r\n", 5);
     for (int i = 0; i < 5000; ++i) bytes += static_cast<char>(i * 7);  // more than a page
-    write_bytes(dir.path / "a.bin", bytes);
+    test::write_bytes(dir.path / "a.bin", bytes);
     const FileBytes mapped = map_file((dir.path / "a.bin").string());
     EXPECT_EQ(mapped.view(), bytes);
     // mapped, not read: the bytes start on a page
@@ -57,8 +41,8 @@ TEST(MapFile, GivesARegularFilesBytesUnchanged) {
 }
 
 TEST(MapFile, ReadsFilesOfNoSizeAndPipes) {
-    TempDir dir;
-    write_bytes(dir.path / "empty", "");
+    test::TempDir dir("raylane_read_file_");
+    test::write_bytes(dir.path / "empty", "");
     EXPECT_TRUE(map_file((dir.path / "empty").string()).view().empty());
     // procfs reports a size of 0 for a file that has bytes
     EXPECT_NE(map_file("/proc/self/status").view().find("Name:"), std::string_view::npos);
@@ -66,14 +50,14 @@ TEST(MapFile, ReadsFilesOfNoSizeAndPipes) {
     const fs::path fifo = dir.path / "fifo";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     const std::string bytes(200000, 'x');
-    std::thread writer([&] { write_bytes(fifo, bytes); });
+    std::thread writer([&] { test::write_bytes(fifo, bytes); });
     const std::string got = std::string(map_file(fifo.string()).view());
     writer.join();
     EXPECT_EQ(got, bytes);
 }
 
 TEST(MapFile, SaysWhyAFileCannotBeRead) {
-    TempDir dir;
+    test::TempDir dir("raylane_read_file_");
     const std::string missing = (dir.path / "missing.ply").string();
     try {
         map_file(missing);

@@ -22,15 +22,15 @@
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
-const float inf = std::numeric_limits<float>::infinity();
-const float nan = std::numeric_limits<float>::quiet_NaN();
+using namespace test;
+
 const float flt_min = std::numeric_limits<float>::min();
-const float flt_max = std::numeric_limits<float>::max();
 
 /// Valid filters in increasing order (sigma from infinity down to 0).
 const std::vector<float> filters = {0.0f,   flt_min,           1e-30f, 1e-3f, 0.3678794f, 0.5f,
@@ -58,7 +58,7 @@ double beer_tolerance(double ref) {
     return 2.4e-7 * (2 + amp) * ref + double(flt_min);
 }
 
-std::string where(float f, float d) {
+std::string beer_where(float f, float d) {
     char buf[80];
     std::snprintf(buf, sizeof buf, "filter %.9g, distance %.9g", double(f), double(d));
     return buf;
@@ -69,7 +69,7 @@ TEST(BeerGrid, StaysInTheUnitIntervalAndFollowsThePowerLaw) {
     for (float f : filters) {
         for (float d : distances) {
             const float t = beer_transmittance(vec3(f), d).x;
-            const std::string at = where(f, d);
+            const std::string at = beer_where(f, d);
             ASSERT_TRUE(t >= 0.0f && t <= 1.0f) << at << ": T = " << t;
             // the denormal distance is 0 under denormals-are-zero; T = 1 either way
             const double ref = d == 1e-40f ? 1.0 : beer_ref(f, d);
@@ -90,11 +90,11 @@ TEST(BeerGrid, IsMonotoneInBothArguments) {
             const float t = beer_transmittance(vec3(filters[i]), distances[j]).x;
             if (j > 0) {
                 EXPECT_LE(t, beer_transmittance(vec3(filters[i]), distances[j - 1]).x)
-                    << where(filters[i], distances[j]) << ": longer paths absorb more";
+                    << beer_where(filters[i], distances[j]) << ": longer paths absorb more";
             }
             if (i > 0) {
                 EXPECT_GE(t, beer_transmittance(vec3(filters[i - 1]), distances[j]).x)
-                    << where(filters[i], distances[j]) << ": clearer media absorb less";
+                    << beer_where(filters[i], distances[j]) << ": clearer media absorb less";
             }
         }
     }
@@ -108,7 +108,7 @@ TEST(BeerGrid, NeverReturnsNaNForInputsOutsideItsDomain) {
         for (float d : all_d) {
             const vec3 t = beer_transmittance(vec3(f, 0.5f, 1.0f), d);
             for (int c = 0; c < 3; ++c)
-                EXPECT_TRUE(t[c] >= 0.0f && t[c] <= 1.0f) << where(f, d) << " channel " << c;
+                EXPECT_TRUE(t[c] >= 0.0f && t[c] <= 1.0f) << beer_where(f, d) << " channel " << c;
         }
     }
 }
@@ -139,7 +139,7 @@ TYPED_TEST(BeerGridPacket, MatchesTheScalarOnTheWholeGrid) {
                 const vec3 s = beer_transmittance(filter, dk);
                 const vec3 p(get(t.x, k), get(t.y, k), get(t.z, k));
                 for (int c = 0; c < 3; ++c) {
-                    const std::string at = where(filter[c], dk);
+                    const std::string at = beer_where(filter[c], dk);
                     ASSERT_TRUE(p[c] >= 0.0f && p[c] <= 1.0f) << at << ": T = " << p[c];
                     if constexpr (W == 1) {
                         EXPECT_EQ(std::bit_cast<uint32_t>(p[c]), std::bit_cast<uint32_t>(s[c]))

@@ -24,15 +24,15 @@
 #include "shade/texture_packet.h"
 #include "shade/texture_scalar.h"
 #include "simd/lanes.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
+using namespace test;
+
 using dvec3 = glm::dvec3;
-const float nan = std::numeric_limits<float>::quiet_NaN();
-const float inf = std::numeric_limits<float>::infinity();
-const float flt_max = std::numeric_limits<float>::max();
 
 /// A W x H image whose texel (x, y) is (x, y, 100 + x + 10 y).
 Texture coordinate_image(int width, int height, TextureFilter filter) {

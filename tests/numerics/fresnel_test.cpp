@@ -20,13 +20,14 @@
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
-const float inf = std::numeric_limits<float>::infinity();
-const float nan = std::numeric_limits<float>::quiet_NaN();
+using namespace test;
+
 constexpr double eps = 0x1.0p-24;  // unit roundoff of float
 
 const float etas[] = {1.0f, 1.0001f, 1.5f, 4.0f, 1.0f / 1.0001f, 1.0f / 1.5f, 0.25f};
@@ -112,7 +113,7 @@ std::vector<float> cosine_grid() {
     return c;
 }
 
-std::string where(float ci, float eta) {
+std::string fresnel_where(float ci, float eta) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "cos_i %.9g (bits %08x), eta %.9g", double(ci),
                   std::bit_cast<uint32_t>(ci), double(eta));
@@ -124,7 +125,7 @@ TEST(FresnelGrid, ConservesEnergyWithoutNaNForEveryIndexAndCosine) {
     double worst_sum = 0, worst_r = 0;
     for (float eta : etas) {
         for (float ci : cosine_grid()) {
-            const std::string at = where(ci, eta);
+            const std::string at = fresnel_where(ci, eta);
             const float r = fresnel_dielectric(ci, eta);
             ASSERT_FALSE(std::isnan(r)) << at;
             EXPECT_TRUE(r >= 0.0f && r <= 1.0f) << at << ": R = " << r;
@@ -166,7 +167,7 @@ TEST(FresnelGrid, RisesContinuouslyToOneAtTheCriticalAngle) {
         for (double rel : {1.0, 0.5, 0.1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6}) {
             const float ci = float(cc + (cb - cc) * rel);
             const float r = fresnel_dielectric(ci, eta);
-            EXPECT_GE(r, previous) << where(ci, eta);
+            EXPECT_GE(r, previous) << fresnel_where(ci, eta);
             previous = r;
         }
         // the last float cosine that still refracts, and the first that does not
@@ -175,7 +176,7 @@ TEST(FresnelGrid, RisesContinuouslyToOneAtTheCriticalAngle) {
         while (fresnel_dielectric(std::nextafter(ci, 0.0f), eta) < 1.0f)
             ci = std::nextafter(ci, 0.0f);
         const float last = fresnel_dielectric(ci, eta);
-        EXPECT_GT(last, 0.99f) << where(ci, eta) << ": no jump at the TIR boundary";
+        EXPECT_GT(last, 0.99f) << fresnel_where(ci, eta) << ": no jump at the TIR boundary";
         EXPECT_LT(last, 1.0f);
         EXPECT_EQ(fresnel_dielectric(std::nextafter(ci, 0.0f), eta), 1.0f);
         EXPECT_NEAR(double(ci), cc, 1e-6) << "the boundary sits at the critical angle";
@@ -194,7 +195,7 @@ TEST(FresnelGrid, RefractsWithoutNaNAndDecidesTotalInternalReflectionAsTheOracle
             vec3 t(nan);
             float cos_t = nan;
             const bool refracts = refract_direction(d, n, eta, t, cos_t);
-            const std::string at = where(c, eta);
+            const std::string at = fresnel_where(c, eta);
             ASSERT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) << at;
             ASSERT_TRUE(cos_t >= 0.0f && cos_t <= 1.0f) << at << ": cos_t " << cos_t;
             const FresnelRef ref = fresnel_ref(c, eta);
@@ -254,7 +255,7 @@ TYPED_TEST(FresnelGridPacket, MatchesTheScalarBitForBit) {
         const vmask<W> refracts = refract_direction<W>(d, nn, eta, t, cos_t);
         for (int k = 0; k < W; ++k) {
             const Case& cs1 = cases[i + size_t(k)];
-            const std::string at = where(cs1.c, cs1.eta);
+            const std::string at = fresnel_where(cs1.c, cs1.eta);
             EXPECT_EQ(std::bit_cast<uint32_t>(get(r, k)),
                       std::bit_cast<uint32_t>(fresnel_dielectric(cs1.c, cs1.eta)))
                 << at;

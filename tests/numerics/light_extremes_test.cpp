@@ -21,10 +21,13 @@
 #include "shade/lights_packet.h"
 #include "shade/lights_scalar.h"
 #include "simd/lanes.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
+
+using namespace test;
 
 using dvec3 = glm::dvec3;
 
@@ -110,8 +113,6 @@ std::vector<Query> queries() {
     }
     return out;
 }
-
-bool finite3(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 /// A valid sample must be usable as it is: finite unit direction, finite positive distance and
 /// factor. An invalid one is only allowed where no usable sample exists: the point sits on the

@@ -16,13 +16,13 @@
 #include "render/sample_sum_scalar.h"
 #include "scene/scene.h"
 #include "simd/lanes.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
-const float nan = std::numeric_limits<float>::quiet_NaN();
-const float inf = std::numeric_limits<float>::infinity();
+using namespace test;
 
 TEST(SampleKind, ClassifiesByTheBits) {
     const float tiny = std::numeric_limits<float>::denorm_min();

@@ -19,12 +19,14 @@
 #include "shade/texture_packet.h"
 #include "shade/texture_scalar.h"
 #include "simd/lanes.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
-constexpr double pi_d = 3.14159265358979323846;
+using namespace test;
+
 using dvec3 = glm::dvec3;
 
 // ---- orthonormal bases ----------------------------------------------------------------------
@@ -283,11 +285,6 @@ TEST(NormalMapFrame, MirrorFloorWithAnEightyNineDegreeMapTracesNoRayIntoItself) 
 template <class T>
 class NormalMapFramePacket : public ::testing::Test {};
 TYPED_TEST_SUITE(NormalMapFramePacket, Widths, WidthName);
-
-template <int W>
-vec3 lane3(const Vec3<W>& v, int k) {
-    return vec3(get(v.x, k), get(v.y, k), get(v.z, k));
-}
 
 template <int W>
 Vec3<W> pack(const std::vector<vec3>& v, size_t i) {

@@ -22,10 +22,13 @@
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
+
+using namespace test;
 
 #ifdef RAYLANE_SANITIZED
 constexpr int sample_scale = 10;  // sanitizers: 10x fewer samples, the same assertions
@@ -33,7 +36,6 @@ constexpr int sample_scale = 10;  // sanitizers: 10x fewer samples, the same ass
 constexpr int sample_scale = 1;
 #endif
 
-constexpr double pi_d = 3.14159265358979323846;
 using chi_square::chi2_p_value;
 using chi_square::Frame;
 using chi_square::frame_of;
@@ -213,7 +215,7 @@ Integrated integrate(const LobeCase& c) {
     return out;
 }
 
-int bin_of(dvec2 xy) {
+int phong_bin_of(dvec2 xy) {
     if (!(std::fabs(xy.x) < 4 && std::fabs(xy.y) < 4)) return 256;
     return int((xy.y + 4) * 2) * 16 + int((xy.x + 4) * 2);
 }
@@ -239,7 +241,7 @@ void check_sampler_against_pdf(const std::string& path) {
         std::vector<int> counts(257, 0);
         for (const vec3& w : ws) {
             ASSERT_TRUE(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z)) << what;
-            ++counts[size_t(bin_of(local_of(c, f, w)))];
+            ++counts[size_t(phong_bin_of(local_of(c, f, w)))];
         }
         std::vector<double> expected(257);
         for (size_t i = 0; i < 257; ++i) expected[i] = in.bins[i] * count;
@@ -258,8 +260,6 @@ TEST(PhongExtremeExponent, SamplersFitTheirPdfsInLobeCoordinates) {
 
 // ---- extreme random numbers -----------------------------------------------------------------
 
-const float extreme_u[] = {0.0f, 0x1.0p-32f, 0x1.0p-24f, 0.5f, 1.0f - 0x1.0p-24f, 1.0f};
-
 /// A shading configuration for one lane: normal n, viewer wo at 30 degrees.
 struct Extreme {
     float e, u1, u2;
@@ -271,8 +271,6 @@ std::vector<Extreme> extreme_cases() {
             for (float u2 : extreme_u) out.push_back({e, u1, u2});
     return out;
 }
-
-bool finite3(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 TEST(PhongExtremeExponent, WeightsStayFiniteAtExtremeRandomNumbers) {
     const vec3 n = glm::normalize(vec3(0.3f, -0.2f, -0.9f));

@@ -19,24 +19,23 @@
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
-constexpr double pi_d = 3.14159265358979323846;
+using namespace test;
+
 using chi_square::chi2_p_value;
 using chi_square::Frame;
 using chi_square::frame_of;
 using dvec2 = glm::dvec2;
 using dvec3 = glm::dvec3;
-const float nan = std::numeric_limits<float>::quiet_NaN();
-const float inf = std::numeric_limits<float>::infinity();
 
 /// From rough to zero, then values no material should hold.
 const float alphas[] = {1.0f, 0.1f, 1e-2f, 1e-3f, 1e-4f, 1e-6f, 1e-20f, 0.0f};
 const float below_threshold[] = {9.9e-5f, 1e-6f, 1e-20f, 1e-40f, 0.0f, -0.0f, -1e-3f, -inf, nan};
-const float extreme_u[] = {0.0f, 0x1.0p-32f, 0x1.0p-24f, 0.5f, 1.0f - 0x1.0p-24f, 1.0f};
 
 /// One lane's configuration.
 struct Config {
@@ -131,10 +130,6 @@ vfloat<W> pack1(const std::vector<Config>& cs, size_t i, float Config::*member) 
     for (int k = 0; k < W; ++k) v[k] = cs[std::min(i + size_t(k), cs.size() - 1)].*member;
     return load<W>(v);
 }
-template <int W>
-vec3 lane3(const Vec3<W>& v, int k) {
-    return vec3(get(v.x, k), get(v.y, k), get(v.z, k));
-}
 
 /// The packet twin of ward_scalar for configs [i, i + W).
 template <int W>
@@ -166,7 +161,6 @@ std::vector<WardOut> ward_packet(const std::vector<Config>& cs, size_t i, float 
 
 bool good(float v) { return std::isfinite(v) && v >= 0.0f; }
 bool good(vec3 v) { return good(v.x) && good(v.y) && good(v.z); }
-bool finite3(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void expect_finite(const WardOut& o, const std::string& at) {
     EXPECT_TRUE(good(o.lobe)) << at << ": ward " << o.lobe;
@@ -273,7 +267,7 @@ dvec2 local_of(const Frame& f, vec3 wo, float alpha, vec3 wi) {
     return dvec2(glm::dot(h, f.t), glm::dot(h, f.b)) / (glm::dot(h, f.n) * double(alpha));
 }
 
-int bin_of(dvec2 xy) {
+int ward_bin_of(dvec2 xy) {
     if (!(std::fabs(xy.x) < 3 && std::fabs(xy.y) < 3)) return 256;
     return int((xy.y + 3) * 16 / 6) * 16 + int((xy.x + 3) * 16 / 6);
 }
@@ -310,7 +304,7 @@ void check_ward_chi_square(const std::string& path) {
                     const double oh = glm::dot(dvec3(wo), h);
                     wis.push_back(vec3(h * (2 * oh) - dvec3(wo)));
                     jac.push_back(4 * oh * a * a / std::pow(1 + a * a * r2, 1.5) * step * step);
-                    bins.push_back(bin_of(xy));
+                    bins.push_back(ward_bin_of(xy));
                 }
             }
             std::vector<double> pdf(wis.size());
@@ -345,7 +339,7 @@ void check_ward_chi_square(const std::string& path) {
             if constexpr (W == 0) {
                 for (int i = 0; i < count; ++i) {
                     const LobeSample s = sample_ward(n, wo, alpha, u1[size_t(i)], u2[size_t(i)]);
-                    ++counts[size_t(bin_of(local_of(f, wo, alpha, s.wi)))];
+                    ++counts[size_t(ward_bin_of(local_of(f, wo, alpha, s.wi)))];
                 }
             } else {
                 const Vec3<W> nn = make_vec3<W>(n.x, n.y, n.z), ww = make_vec3<W>(wo.x, wo.y, wo.z);
@@ -353,7 +347,7 @@ void check_ward_chi_square(const std::string& path) {
                     const LobeSamplePacket<W> s = sample_ward<W>(
                         nn, ww, alpha, load<W>(u1.data() + i), load<W>(u2.data() + i));
                     for (int k = 0; k < W; ++k)
-                        ++counts[size_t(bin_of(local_of(f, wo, alpha, lane3(s.wi, k))))];
+                        ++counts[size_t(ward_bin_of(local_of(f, wo, alpha, lane3(s.wi, k))))];
                 }
             }
             std::vector<double> expected(257);

@@ -11,15 +11,10 @@
 #include "render/compare.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "support/small_scene.h"
 
 namespace raylane {
 namespace {
-
-Scene small(Scene scene, int width) {
-    scene.camera.height = std::max(1, scene.camera.height * width / scene.camera.width);
-    scene.camera.width = width;
-    return scene;
-}
 
 Scene scene_file(const std::string& name) {
     return load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name);
@@ -41,7 +36,7 @@ TEST(RenderFeatures, SpecialisedKernelsGiveTheGenericKernelsImage) {
             continue;
         }
         // 50 wide and an odd height: packets (4x4 at W = 16) partial at the right and bottom edges
-        scene = small(scene, 50);
+        scene = small_scene(scene, 50);
         scene.camera.height = scene.camera.height / 2 * 2 + 1;
         const Accel accel = build_accel(scene, BuildParams{});
         RenderParams p;
@@ -60,7 +55,7 @@ TEST(RenderFeatures, SpecialisedKernelsGiveTheGenericKernelsImage) {
 
 /// Glass of index 1 that absorbs nothing is invisible: the image equals the environment alone.
 TEST(RenderFeatures, GlassOfIndexOneIsInvisible) {
-    Scene scene = small(scene_file("fig05_refractive_sphere.json"), 64);
+    Scene scene = small_scene(scene_file("fig05_refractive_sphere.json"), 64);
     scene.materials[0].ior = 1.0f;
     Scene empty = scene;
     empty.objects.clear();
@@ -78,7 +73,7 @@ TEST(RenderFeatures, GlassOfIndexOneIsInvisible) {
 /// Figure 4c: with the reflected radiance replaced by magenta and the local term off, the
 /// sphere's centre shows R c_s magenta with R = Schlick(0.5, 1) = 0.5.
 TEST(RenderFeatures, ReflectedColourOverrideShowsTheFresnelWeight) {
-    Scene scene = small(scene_file("fig04c_reflection_magenta.json"), 65);
+    Scene scene = small_scene(scene_file("fig04c_reflection_magenta.json"), 65);
     scene.shading.local = false;
     scene.materials[0].k_a_after = 0.0f;
     const Accel accel = build_accel(scene, BuildParams{});
@@ -97,7 +92,7 @@ TEST(RenderFeatures, ReflectedColourOverrideShowsTheFresnelWeight) {
 /// A lens of radius 0 is the pinhole camera; a real lens blurs what is off the plane of focus
 /// and keeps what is on it.
 TEST(RenderFeatures, ThinLensFocusesOnItsPlane) {
-    Scene scene = small(scene_file("fig08a_dof_close.json"), 64);
+    Scene scene = small_scene(scene_file("fig08a_dof_close.json"), 64);
     const Accel accel = build_accel(scene, BuildParams{});
     RenderParams p;
     p.spp = 16;

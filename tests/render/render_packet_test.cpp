@@ -12,6 +12,7 @@
 #include "render/compare.h"
 #include "render/render_scalar.h"
 #include "simd/simd.h"
+#include "support/small_scene.h"
 #include "support/widths.h"
 
 namespace raylane {
@@ -31,12 +32,6 @@ Scene scene_named(const std::string& name) {
     return name == "builtin"
                ? make_builtin_scene()
                : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
-}
-
-Scene small(Scene scene, int width) {
-    scene.camera.height = std::max(1, scene.camera.height * width / scene.camera.width);
-    scene.camera.width = width;
-    return scene;
 }
 
 /// 50 x 29 pixels: the camera packets (4x4 at W = 16, 4x2 at 8, 2x2 at 4) are cut by the image's
@@ -83,7 +78,7 @@ TYPED_TEST(RenderPacket, MatchesScalarWithJitteredSamples) {
 TYPED_TEST(RenderPacket, AovsMatchScalar) {
     constexpr int W = TypeParam::value;
     for (const char* name : {"builtin", "fig05_refractive_sphere"}) {
-        const Scene scene = small(scene_named(name), 64);
+        const Scene scene = small_scene(scene_named(name), 64);
         const Accel accel = build_accel(scene, BuildParams{});
         for (Aov aov : {Aov::normal, Aov::depth, Aov::bvh_cost}) {
             RenderParams p;
@@ -113,7 +108,7 @@ TYPED_TEST(RenderPacket, AovsMatchScalar) {
 /// make a batch of 16 and one of 3).
 TEST(RenderPacket, SameImageForOneAndTwoThreads) {
     for (const char* name : {"builtin", "fig10_glass_bunny"}) {
-        const Scene scene = small(scene_named(name), 80);
+        const Scene scene = small_scene(scene_named(name), 80);
         const Accel accel = build_accel(scene, BuildParams{});
         RenderParams p;
         p.spp = std::string(name) == "builtin" ? 2 : 19;
@@ -133,7 +128,7 @@ TEST(RenderPacket, SameImageForEveryTileSize) {
     for (const char* name : {"builtin", "dragon"}) {
         Scene scene;
         try {
-            scene = small(scene_named(name), 75);
+            scene = small_scene(scene_named(name), 75);
         } catch (const std::exception& e) {
             EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
             continue;
@@ -171,9 +166,9 @@ TEST(RenderPacket, EverySceneFileAgreesWithTheScalarPath) {
             continue;
         }
 #ifdef RAYLANE_SANITIZED
-        scene = small(scene, 96);
+        scene = small_scene(scene, 96);
 #else
-        scene = small(scene, std::max(64, scene.camera.width / 4));
+        scene = small_scene(scene, std::max(64, scene.camera.width / 4));
 #endif
         const Accel accel = build_accel(scene, BuildParams{});
         RenderParams p;

@@ -25,16 +25,16 @@ namespace raylane {
 namespace {
 
 #ifdef RAYLANE_SANITIZED
-constexpr int rounds = 64;
+constexpr int brdf_rounds = 64;
 #else
-constexpr int rounds = 1024;
+constexpr int brdf_rounds = 1024;
 #endif
 
 constexpr double ulp1 = 0x1.0p-23;
 
-struct Rng {
+struct LaneRng {
     std::mt19937_64 engine;
-    explicit Rng(uint64_t seed) : engine(seed) {}
+    explicit LaneRng(uint64_t seed) : engine(seed) {}
     float uniform() { return static_cast<float>(engine() >> 40) * 0x1.0p-24f; }
     vec3 direction() {
         const float z = 2.0f * uniform() - 1.0f, phi = 6.2831853f * uniform();
@@ -51,7 +51,7 @@ struct Lane {
 
 /// Mixes random pairs (half below the surface), near-mirror pairs (the lobes' peaks), exact
 /// degenerate pairs (wi = wo = n, exact mirror, cosines 1e-12) and extreme random numbers.
-Lane make_lane(Rng& rng, int i) {
+Lane make_lane(LaneRng& rng, int i) {
     Lane l;
     l.n = rng.direction();
     l.wo = rng.direction();
@@ -116,7 +116,7 @@ vfloat<W> gather1(const std::vector<Lane>& lanes, float Lane::*member) {
 }
 
 template <int W>
-Packets<W> make_packets(Rng& rng, int round) {
+Packets<W> make_packets(LaneRng& rng, int round) {
     Packets<W> p;
     for (int k = 0; k < W; ++k) p.lanes.push_back(make_lane(rng, round * W + k));
     p.n = gather3<W>(p.lanes, &Lane::n);
@@ -179,13 +179,13 @@ template <class T>
 class BrdfPacket : public ::testing::Test {};
 TYPED_TEST_SUITE(BrdfPacket, Widths, WidthName);
 
-const float alphas[] = {1e-4f, 0.0141f, 0.162f, 1.0f};
-const float exponents[] = {0.0f, 50.0f, 1040.0f, 1e6f};
+const float packet_alphas[] = {1e-4f, 0.0141f, 0.162f, 1.0f};
+const float packet_exponents[] = {0.0f, 50.0f, 1040.0f, 1e6f};
 
 TYPED_TEST(BrdfPacket, FramesMatchScalar) {
     constexpr int W = TypeParam::value;
-    Rng rng(10);
-    for (int round = 0; round < rounds; ++round) {
+    LaneRng rng(10);
+    for (int round = 0; round < brdf_rounds; ++round) {
         const Packets<W> p = make_packets<W>(rng, round);
         Vec3<W> t, b;
         orthonormal_basis(p.n, t, b);
@@ -206,11 +206,11 @@ TYPED_TEST(BrdfPacket, FramesMatchScalar) {
 
 TYPED_TEST(BrdfPacket, LobesMatchScalar) {
     constexpr int W = TypeParam::value;
-    Rng rng(11);
+    LaneRng rng(11);
     Worst worst;
-    for (int round = 0; round < rounds; ++round) {
+    for (int round = 0; round < brdf_rounds; ++round) {
         const Packets<W> p = make_packets<W>(rng, round);
-        const float alpha = alphas[round % 4], e = exponents[(round / 4) % 4];
+        const float alpha = packet_alphas[round % 4], e = packet_exponents[(round / 4) % 4];
         const Vec3<W> r = mirror_direction(p.n, p.wo);
         const vfloat<W> ph = phong_lobe(r, p.wi, e), bp = blinn_phong_lobe(p.n, p.wi, p.wo, e);
         const vfloat<W> wa = ward_lobe(p.n, p.wi, p.wo, alpha);
@@ -251,7 +251,7 @@ TYPED_TEST(BrdfPacket, PhongLobeIsExactlyZeroWhereItsPacketsSkipIt) {
     const vec3 axis(0.0f, 0.0f, 1.0f);
     const Vec3<W> ax = make_vec3<W>(0.0f, 0.0f, 1.0f);
     // a direction whose chord to the axis has length^2 about c: unit with cos = 1 - c / 2, or
-    // for tiny c (huge e, where 1 - c / 2 rounds to 1) the axis plus a side step of sqrt(c)
+    // for tiny c (huge e, where 1 - c / 2 brdf_rounds to 1) the axis plus a side step of sqrt(c)
     auto at_chord2 = [&](float c) {
         if (c < 1e-3f) return vec3(std::sqrt(c), 0.0f, 1.0f);
         const float cos_t = 1.0f - 0.5f * c;
@@ -313,17 +313,17 @@ TYPED_TEST(BrdfPacket, PhongLobeIsExactlyZeroWhereItsPacketsSkipIt) {
 
 TYPED_TEST(BrdfPacket, ShadingFactorsMatchScalar) {
     constexpr int W = TypeParam::value;
-    Rng rng(12);
+    LaneRng rng(12);
     Worst worst;
     Material m;
     m.k_s = 0.8f;
     m.k_d = 0.45f;
     m.c_s = vec3(1.0f, 0.9f, 0.25f);
     const vec3 c_d(0.3f, 0.6f, 0.9f);
-    for (int round = 0; round < rounds; ++round) {
+    for (int round = 0; round < brdf_rounds; ++round) {
         const Packets<W> p = make_packets<W>(rng, round);
-        m.alpha = alphas[round % 4];
-        m.exponent = exponents[(round / 4) % 4];
+        m.alpha = packet_alphas[round % 4];
+        m.exponent = packet_exponents[(round / 4) % 4];
         const Vec3<W> cd = make_vec3<W>(c_d.x, c_d.y, c_d.z);
         const Vec3<W> cs = p.wo;  // a per-lane specular colour (a texture)
         for (SpecularModel model :
@@ -364,11 +364,11 @@ TYPED_TEST(BrdfPacket, ShadingFactorsMatchScalar) {
 
 TYPED_TEST(BrdfPacket, SamplersMatchScalar) {
     constexpr int W = TypeParam::value;
-    Rng rng(13);
+    LaneRng rng(13);
     Worst worst;
-    for (int round = 0; round < rounds; ++round) {
+    for (int round = 0; round < brdf_rounds; ++round) {
         const Packets<W> p = make_packets<W>(rng, round);
-        const float alpha = alphas[round % 4], e = exponents[(round / 4) % 4];
+        const float alpha = packet_alphas[round % 4], e = packet_exponents[(round / 4) % 4];
         const Vec3<W> ph = sample_phong_lobe(p.wo, e, p.u1, p.u2);
         const LobeSamplePacket<W> sw = sample_ward(p.n, p.wo, alpha, p.u1, p.u2);
         const LobeSamplePacket<W> sd = sample_ward_duer(p.n, p.wo, alpha, p.u1, p.u2);
@@ -406,10 +406,10 @@ TYPED_TEST(BrdfPacket, SamplersMatchScalar) {
 
 TYPED_TEST(BrdfPacket, OpticsMatchScalar) {
     constexpr int W = TypeParam::value;
-    Rng rng(14);
+    LaneRng rng(14);
     Worst worst;
     const vec3 filters[] = {vec3(0.9f, 0.5f, 0.0f), vec3(1.0f, 0.999f, 1e-9f)};
-    for (int round = 0; round < rounds; ++round) {
+    for (int round = 0; round < brdf_rounds; ++round) {
         const Packets<W> p = make_packets<W>(rng, round);
         const vfloat<W> r0 = p.u1 * 1.5f;
         const vfloat<W> sch = schlick<W>(r0, p.cos_i);

@@ -17,9 +17,9 @@ namespace raylane {
 namespace {
 
 #ifdef RAYLANE_SANITIZED
-constexpr int sample_scale = 10;
+constexpr int presets_sample_scale = 10;
 #else
-constexpr int sample_scale = 1;
+constexpr int presets_sample_scale = 1;
 #endif
 
 /// One row of the document's table 3.1, numbers as written.
@@ -190,7 +190,7 @@ TEST(BrdfPresets, FittedMaterialsReflectNoMoreThanTheyReceive) {
     std::mt19937_64 rng(42);
     auto uniform = [&rng] { return static_cast<float>(rng() >> 40) * 0x1.0p-24f; };
     const vec3 n(0, 0, 1);
-    const int count = 50000 / sample_scale;
+    const int count = 50000 / presets_sample_scale;
     for (const BrdfFit& fit : brdf_fits()) {
         Material m;
         m.model = fit.model;

@@ -13,17 +13,18 @@
 #include <vector>
 
 #include "shade/brdf_scalar.h"
+#include "support/float_values.h"
 
 namespace raylane {
 namespace {
+
+using namespace test;
 
 #ifdef RAYLANE_SANITIZED
 constexpr int sample_scale = 10;  // sanitizers: 10x fewer samples, same assertions
 #else
 constexpr int sample_scale = 1;
 #endif
-
-constexpr double pi_d = 3.14159265358979323846;
 
 /// Uniform floats in [0, 1) (24 bits), reproducible.
 struct Rng {

@@ -14,26 +14,24 @@
 
 #include "io/load_image.h"
 #include "shade/texture_scalar.h"
+#include "support/float_values.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
+using namespace test;
+
 #ifdef RAYLANE_SANITIZED
-constexpr int rounds = 300;
+constexpr int texture_rounds = 300;
 #else
-constexpr int rounds = 6000;
+constexpr int texture_rounds = 6000;
 #endif
 
-const float nan = std::numeric_limits<float>::quiet_NaN();
-const float inf = std::numeric_limits<float>::infinity();
-
-using Rng = std::mt19937;
-
-float uniform(Rng& rng, float lo, float hi) {
+float uniform(std::mt19937& rng, float lo, float hi) {
     return std::uniform_real_distribution<float>(lo, hi)(rng);
 }
-int pick(Rng& rng, int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); }
+int pick(std::mt19937& rng, int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng); }
 
 /// Same bits, or both NaN.
 bool same(float a, float b) {
@@ -42,13 +40,14 @@ bool same(float a, float b) {
 }
 
 /// A texture coordinate: ordinary, on texel centres and edges, outside [0, 1], or special.
-float coordinate(Rng& rng, int size) {
+float coordinate(std::mt19937& rng, int size) {
     const float n = static_cast<float>(size);
     switch (pick(rng, 6)) {
         case 0:
         case 1:
             return uniform(rng, 0.0f, 1.0f);
-        case 2:  // texel centres and edges, and the points where the nearest rule rounds at .5
+        case 2:  // texel centres and edges, and the points where the nearest rule texture_rounds at
+                 // .5
             return static_cast<float>(pick(rng, 4 * size + 1)) / (4.0f * n) +
                    static_cast<float>(pick(rng, 5) - 2);
         case 3:
@@ -63,7 +62,7 @@ float coordinate(Rng& rng, int size) {
     }
 }
 
-Texture random_image(Rng& rng) {
+Texture random_image(std::mt19937& rng) {
     const int sizes[] = {1, 2, 3, 5, 8, 17};
     Texture t;
     t.width = sizes[pick(rng, 6)];
@@ -75,7 +74,7 @@ Texture random_image(Rng& rng) {
     return t;
 }
 
-vec3 random_unit(Rng& rng) {
+vec3 random_unit(std::mt19937& rng) {
     std::normal_distribution<float> gauss;
     for (;;) {
         const vec3 v(gauss(rng), gauss(rng), gauss(rng));
@@ -116,8 +115,8 @@ void expect_lane(const Vec3<W>& got, int i, bool active, vec3 want, const char* 
 
 TYPED_TEST(TexturePacket, ImageLookupMatchesTheScalarBitForBit) {
     constexpr int W = TypeParam::value;
-    Rng rng(11 + W);
-    for (int r = 0; r < rounds; ++r) {
+    std::mt19937 rng(11 + W);
+    for (int r = 0; r < texture_rounds; ++r) {
         const Texture t = random_image(rng);
         alignas(64) float us[W], vs[W];
         for (int i = 0; i < W; ++i) {
@@ -135,8 +134,8 @@ TYPED_TEST(TexturePacket, ImageLookupMatchesTheScalarBitForBit) {
 
 TYPED_TEST(TexturePacket, CheckerMatchesTheScalarBitForBit) {
     constexpr int W = TypeParam::value;
-    Rng rng(12 + W);
-    for (int r = 0; r < rounds; ++r) {
+    std::mt19937 rng(12 + W);
+    for (int r = 0; r < texture_rounds; ++r) {
         const Texture t = make_checker(vec3(uniform(rng, 0, 1), 0.5f, 0.25f),
                                        vec3(0.0f, uniform(rng, 0, 1), 1.0f),
                                        static_cast<float>(1 + pick(rng, 16)) * 0.5f);
@@ -171,7 +170,7 @@ TYPED_TEST(TexturePacket, EmptyImagesAndNoActiveLanesGiveZero) {
 }
 
 /// A direction: random, along or near the axes and the seam, huge, tiny, zero or NaN.
-vec3 direction(Rng& rng) {
+vec3 direction(std::mt19937& rng) {
     switch (pick(rng, 6)) {
         case 0:
         case 1:
@@ -199,8 +198,8 @@ TYPED_TEST(TexturePacket, LatlongUvMatchesTheScalarBitForBit) {
     // bit for bit at every W (std::atan2 / std::asin lane by lane): a nearest look-up flips
     // texel on a one-ulp difference
     constexpr int W = TypeParam::value;
-    Rng rng(13 + W);
-    for (int r = 0; r < rounds; ++r) {
+    std::mt19937 rng(13 + W);
+    for (int r = 0; r < texture_rounds; ++r) {
         std::vector<vec3> dirs;
         for (int i = 0; i < W; ++i) dirs.push_back(direction(rng));
         const Uv<W> uv = latlong_uv<W>(pack<W>(dirs));
@@ -225,8 +224,8 @@ TYPED_TEST(TexturePacket, LatlongUvMatchesTheScalarBitForBit) {
 
 TYPED_TEST(TexturePacket, EnvironmentLookupMatchesTheScalarBitForBit) {
     constexpr int W = TypeParam::value;
-    Rng rng(14 + W);
-    for (int r = 0; r < rounds; ++r) {
+    std::mt19937 rng(14 + W);
+    for (int r = 0; r < texture_rounds; ++r) {
         const Texture t = random_image(rng);
         std::vector<vec3> dirs;
         for (int i = 0; i < W; ++i) dirs.push_back(direction(rng));
@@ -247,8 +246,8 @@ TYPED_TEST(TexturePacket, EnvironmentLookupMatchesTheScalarBitForBit) {
 
 TYPED_TEST(TexturePacket, NormalFromMapMatchesTheScalarBitForBit) {
     constexpr int W = TypeParam::value;
-    Rng rng(15 + W);
-    for (int r = 0; r < rounds; ++r) {
+    std::mt19937 rng(15 + W);
+    for (int r = 0; r < texture_rounds; ++r) {
         glm::mat3 m(1.0f);
         for (int c = 0; c < 3; ++c)
             for (int k = 0; k < 3; ++k) m[c][k] = uniform(rng, -2.0f, 2.0f);
@@ -293,8 +292,8 @@ TYPED_TEST(TexturePacket, NormalFromMapMatchesTheScalarBitForBit) {
 
 TYPED_TEST(TexturePacket, KeepAboveMatchesTheScalarBitForBit) {
     constexpr int W = TypeParam::value;
-    Rng rng(16 + W);
-    for (int r = 0; r < rounds; ++r) {
+    std::mt19937 rng(16 + W);
+    for (int r = 0; r < texture_rounds; ++r) {
         std::vector<vec3> ns, refs;
         for (int i = 0; i < W; ++i) {
             const vec3 ref = random_unit(rng);

@@ -11,6 +11,7 @@
 
 #include "core/rng.h"
 #include "simd/lanes.h"  // lane_index
+#include "support/lane_helpers.h"
 #include "support/widths.h"
 
 namespace raylane {
@@ -20,14 +21,7 @@ template <class T>
 class HashTest : public ::testing::Test {};
 TYPED_TEST_SUITE(HashTest, Widths, WidthName);
 
-constexpr uint32_t counters = 100000;
-
-template <int W>
-std::array<int32_t, W> lanes_of(const vint<W>& v) {
-    std::array<int32_t, W> a;
-    store(a.data(), v);
-    return a;
-}
+constexpr uint32_t hash_counters = 100000;
 
 /// Counter c's four inputs: consecutive pixels, samples and dims that vary, large seeds, so every
 /// bit of the inputs (including the sign bit of an int32 lane) gets exercised.
@@ -40,7 +34,7 @@ Counters counters_for(uint32_t c) {
 
 TYPED_TEST(HashTest, MatchesScalarRngBitForBit) {
     constexpr int W = TypeParam::value;
-    for (uint32_t base = 0; base < counters; base += W) {
+    for (uint32_t base = 0; base < hash_counters; base += W) {
         std::array<int32_t, W> pixel, sample, dim, seed;
         for (int l = 0; l < W; ++l) {
             const Counters c = counters_for(base + static_cast<uint32_t>(l));

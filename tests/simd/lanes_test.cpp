@@ -12,33 +12,17 @@
 #include <string>
 #include <vector>
 
+#include "support/lane_helpers.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
-constexpr int rounds = 2000;
-
-// ---- helpers (each tests/simd file keeps its own copy) ---------------------------------------
+// ---- helpers ---------------------------------------------------------------------------------
 
 template <class T>
 class LanesTest : public ::testing::Test {};
 TYPED_TEST_SUITE(LanesTest, Widths, WidthName);
-
-uint32_t bits_of(float v) { return std::bit_cast<uint32_t>(v); }
-
-template <int W>
-std::array<float, W> lanes_of(const vfloat<W>& v) {
-    std::array<float, W> a;
-    store(a.data(), v);
-    return a;
-}
-template <int W>
-std::array<int32_t, W> lanes_of(const vint<W>& v) {
-    std::array<int32_t, W> a;
-    store(a.data(), v);
-    return a;
-}
 
 template <int W>
 constexpr uint32_t all_lanes = W == 32 ? ~0u : (1u << W) - 1u;

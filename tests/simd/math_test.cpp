@@ -13,87 +13,19 @@
 #include <string>
 
 #include "simd/lanes.h"  // get, lane_index, mask_from_bits
+#include "support/lane_helpers.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
-constexpr int rounds = 2000;
 constexpr float inf = std::numeric_limits<float>::infinity();
 
-// ---- helpers (each tests/simd file keeps its own copy) ---------------------------------------
+// ---- helpers ---------------------------------------------------------------------------------
 
 template <class T>
 class MathTest : public ::testing::Test {};
 TYPED_TEST_SUITE(MathTest, Widths, WidthName);
-
-uint32_t bits_of(float v) { return std::bit_cast<uint32_t>(v); }
-bool same_float(float a, float b) {
-    return (std::isnan(a) && std::isnan(b)) || bits_of(a) == bits_of(b);
-}
-
-float random_input(std::mt19937& rng) {
-    static constexpr float specials[] = {0.0f,
-                                         -0.0f,
-                                         1.0f,
-                                         -1.0f,
-                                         inf,
-                                         -inf,
-                                         std::numeric_limits<float>::quiet_NaN(),
-                                         -std::numeric_limits<float>::quiet_NaN(),
-                                         std::numeric_limits<float>::denorm_min(),
-                                         -1e-40f,
-                                         std::numeric_limits<float>::min(),
-                                         std::numeric_limits<float>::max(),
-                                         0.5f,
-                                         3.0f};
-    switch (rng() % 4) {
-        case 0:
-            return specials[rng() % std::size(specials)];
-        case 1:
-            return std::bit_cast<float>(static_cast<uint32_t>(rng()));
-        default:
-            return std::uniform_real_distribution<float>(-100.0f, 100.0f)(rng);
-    }
-}
-
-template <int W>
-std::array<float, W> random_lanes(std::mt19937& rng) {
-    std::array<float, W> a;
-    for (float& v : a) v = random_input(rng);
-    return a;
-}
-
-template <int W>
-std::array<float, W> lanes_of(const vfloat<W>& v) {
-    std::array<float, W> a;
-    store(a.data(), v);
-    return a;
-}
-
-template <int W>
-std::array<int32_t, W> lanes_of(const vint<W>& v) {
-    std::array<int32_t, W> a;
-    store(a.data(), v);
-    return a;
-}
-
-/// Applies op to random packets and oracle to their lanes; lanes must agree (same_float).
-template <int W, class Op, class Oracle>
-void expect_binary_matches(Op op, Oracle oracle, uint32_t seed) {
-    std::mt19937 rng(seed);
-    for (int r = 0; r < rounds; ++r) {
-        const auto a = random_lanes<W>(rng);
-        const auto b = random_lanes<W>(rng);
-        const auto got = lanes_of<W>(op(load<W>(a.data()), load<W>(b.data())));
-        for (int i = 0; i < W; ++i) {
-            const float want = oracle(a[i], b[i]);
-            ASSERT_TRUE(same_float(got[i], want))
-                << "lane " << i << ": f(" << std::hexfloat << a[i] << ", " << b[i]
-                << ") = " << got[i] << ", want " << want;
-        }
-    }
-}
 
 /// The SSE instructions themselves, as the oracle for the documented min / max semantics.
 float sse_min(float a, float b) { return _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(a), _mm_set_ss(b))); }

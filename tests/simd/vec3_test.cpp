@@ -12,23 +12,17 @@
 #include <random>
 #include <string>
 
+#include "support/lane_helpers.h"
 #include "support/widths.h"
 
 namespace raylane {
 namespace {
 
-constexpr int rounds = 1000;
-
-// ---- helpers (each tests/simd file keeps its own copy) ---------------------------------------
+// ---- helpers ---------------------------------------------------------------------------------
 
 template <class T>
 class Vec3Test : public ::testing::Test {};
 TYPED_TEST_SUITE(Vec3Test, Widths, WidthName);
-
-uint32_t bits_of(float v) { return std::bit_cast<uint32_t>(v); }
-bool same_float(float a, float b) {
-    return (std::isnan(a) && std::isnan(b)) || bits_of(a) == bits_of(b);
-}
 
 /// W random vectors in SoA arrays; components span several magnitudes, some exactly zero.
 template <int W>
@@ -69,13 +63,6 @@ void expect_same(const SoA<W>& got, int l, glm::vec3 want, const char* what) {
         << what << " lane " << l << ": (" << got.x[l] << ", " << got.y[l] << ", " << got.z[l]
         << ") vs (" << want.x << ", " << want.y << ", " << want.z << ")";
 }
-template <int W>
-std::array<float, W> lanes_of(const vfloat<W>& v) {
-    std::array<float, W> a;
-    store(a.data(), v);
-    return a;
-}
-
 // ---- tests ----------------------------------------------------------------------------------
 
 TYPED_TEST(Vec3Test, DefaultIsZeroAndMakeBroadcasts) {

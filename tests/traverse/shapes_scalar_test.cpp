@@ -19,11 +19,11 @@ namespace {
 #ifdef RAYLANE_SANITIZED
 constexpr int disc_rays = 2000;
 constexpr int rim_rays = 10000;
-constexpr int oracle_rays = 5000;
+constexpr int shape_oracle_rays = 5000;
 #else
 constexpr int disc_rays = 20000;
 constexpr int rim_rays = 100000;
-constexpr int oracle_rays = 100000;
+constexpr int shape_oracle_rays = 100000;
 #endif
 
 const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -466,7 +466,7 @@ TEST(IntersectCylinder, MatchesADoubleOracleOnRaysAtInteriorPoints) {
     std::uniform_real_distribution<float> uni(0.0f, 1.0f);
     std::normal_distribution<float> normal;
     int checked_parts = 0;
-    for (int i = 0; i < oracle_rays; ++i) {
+    for (int i = 0; i < shape_oracle_rays; ++i) {
         const vec3 w = glm::normalize(vec3(normal(rng), normal(rng), normal(rng)));
         const float ang = 6.2831853f * uni(rng), rho = 0.9f * c.radius * std::sqrt(uni(rng));
         const vec3 target(rho * std::cos(ang), c.height * (0.05f + 0.9f * uni(rng)),
@@ -487,7 +487,7 @@ TEST(IntersectCylinder, MatchesADoubleOracleOnRaysAtInteriorPoints) {
         EXPECT_EQ(got, part) << i;
         ++checked_parts;
     }
-    EXPECT_GT(checked_parts, oracle_rays * 9 / 10);
+    EXPECT_GT(checked_parts, shape_oracle_rays * 9 / 10);
 }
 
 // --- plane -------------------------------------------------------------------------------------

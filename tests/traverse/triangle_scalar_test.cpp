@@ -20,11 +20,11 @@ namespace {
 #ifdef RAYLANE_SANITIZED
 constexpr size_t target_stride = 5;  // every 5th target of a mesh with more than 1000
 constexpr int exterior_directions = 2;
-constexpr int oracle_rays = 2000;
+constexpr int triangle_oracle_rays = 2000;
 #else
 constexpr size_t target_stride = 1;
 constexpr int exterior_directions = 8;
-constexpr int oracle_rays = 100000;
+constexpr int triangle_oracle_rays = 100000;
 #endif
 
 struct Hit3 {
@@ -39,7 +39,7 @@ Hit3 trace(const Ray& ray, vec3 a, vec3 b, vec3 c) {
     return h;
 }
 
-Ray make_ray(vec3 org, vec3 dir) {
+Ray ray_from(vec3 org, vec3 dir) {
     Ray r;
     r.org = org;
     r.dir = dir;
@@ -58,18 +58,18 @@ TEST(WatertightTriangle, BuildDoesNotContractMultiplyAdd) {
 // --- hand-made cases ---------------------------------------------------------------------------
 
 TEST(WatertightTriangle, ChoosesTheDominantAxisAndKeepsTheWinding) {
-    WatertightRay wr = make_watertight_ray(make_ray(vec3(0.0f), vec3(0.5f, -2.0f, 1.0f)));
+    WatertightRay wr = make_watertight_ray(ray_from(vec3(0.0f), vec3(0.5f, -2.0f, 1.0f)));
     EXPECT_EQ(wr.kz, 1);
     EXPECT_EQ(wr.kx, 0);  // swapped because dir[kz] < 0
     EXPECT_EQ(wr.ky, 2);
     EXPECT_EQ(wr.sx, 0.5f / -2.0f);
     EXPECT_EQ(wr.sy, 1.0f / -2.0f);
     EXPECT_EQ(wr.sz, 1.0f / -2.0f);
-    wr = make_watertight_ray(make_ray(vec3(0.0f), vec3(1.0f, 1.0f, 1.0f)));
+    wr = make_watertight_ray(ray_from(vec3(0.0f), vec3(1.0f, 1.0f, 1.0f)));
     EXPECT_EQ(wr.kz, 0);  // ties go to the lower axis
     EXPECT_EQ(wr.kx, 1);
     EXPECT_EQ(wr.ky, 2);
-    wr = make_watertight_ray(make_ray(vec3(0.0f), vec3(0.0f, -0.0f, 3.0f)));
+    wr = make_watertight_ray(ray_from(vec3(0.0f), vec3(0.0f, -0.0f, 3.0f)));
     EXPECT_EQ(wr.kz, 2);
     EXPECT_EQ(wr.kx, 0);
     EXPECT_EQ(wr.ky, 1);
@@ -77,7 +77,7 @@ TEST(WatertightTriangle, ChoosesTheDominantAxisAndKeepsTheWinding) {
 
 TEST(WatertightTriangle, HitsAtTheExactDistanceAndBarycentrics) {
     const vec3 a(0.0f), b(1.0f, 0.0f, 0.0f), c(0.0f, 1.0f, 0.0f);
-    const Hit3 h = trace(make_ray(vec3(0.25f, 0.5f, -2.0f), vec3(0.0f, 0.0f, 4.0f)), a, b, c);
+    const Hit3 h = trace(ray_from(vec3(0.25f, 0.5f, -2.0f), vec3(0.0f, 0.0f, 4.0f)), a, b, c);
     ASSERT_TRUE(h.hit);
     EXPECT_EQ(h.t, 0.5f);
     EXPECT_EQ(h.u, 0.25f);
@@ -89,7 +89,7 @@ TEST(WatertightTriangle, HitsAtTheExactDistanceAndBarycentrics) {
 
 TEST(WatertightTriangle, HitsFromBothSidesWithTheWindingNormal) {
     const vec3 a(0.0f), b(1.0f, 0.0f, 0.0f), c(0.0f, 1.0f, 0.0f);
-    const Hit3 h = trace(make_ray(vec3(0.25f, 0.25f, 3.0f), vec3(0.0f, 0.0f, -1.0f)), a, b, c);
+    const Hit3 h = trace(ray_from(vec3(0.25f, 0.25f, 3.0f), vec3(0.0f, 0.0f, -1.0f)), a, b, c);
     ASSERT_TRUE(h.hit);
     EXPECT_EQ(h.t, 3.0f);
     EXPECT_EQ(h.u, 0.25f);
@@ -100,10 +100,10 @@ TEST(WatertightTriangle, HitsFromBothSidesWithTheWindingNormal) {
 
 TEST(WatertightTriangle, MissesOutsideBehindAndOutsideTheInterval) {
     const vec3 a(0.0f), b(1.0f, 0.0f, 0.0f), c(0.0f, 1.0f, 0.0f);
-    EXPECT_FALSE(trace(make_ray(vec3(0.75f, 0.5f, -1.0f), vec3(0, 0, 1)), a, b, c).hit);
-    EXPECT_FALSE(trace(make_ray(vec3(-0.1f, 0.5f, -1.0f), vec3(0, 0, 1)), a, b, c).hit);
-    EXPECT_FALSE(trace(make_ray(vec3(0.2f, 0.2f, 1.0f), vec3(0, 0, 1)), a, b, c).hit);  // behind
-    Ray r = make_ray(vec3(0.2f, 0.2f, -1.0f), vec3(0, 0, 1));
+    EXPECT_FALSE(trace(ray_from(vec3(0.75f, 0.5f, -1.0f), vec3(0, 0, 1)), a, b, c).hit);
+    EXPECT_FALSE(trace(ray_from(vec3(-0.1f, 0.5f, -1.0f), vec3(0, 0, 1)), a, b, c).hit);
+    EXPECT_FALSE(trace(ray_from(vec3(0.2f, 0.2f, 1.0f), vec3(0, 0, 1)), a, b, c).hit);  // behind
+    Ray r = ray_from(vec3(0.2f, 0.2f, -1.0f), vec3(0, 0, 1));
     r.t_max = 1.0f;  // the hit is at t = 1 exactly: open interval
     EXPECT_FALSE(trace(r, a, b, c).hit);
     r.t_max = infinity;
@@ -116,7 +116,7 @@ TEST(WatertightTriangle, MissesOutsideBehindAndOutsideTheInterval) {
 TEST(WatertightTriangle, LeavesOutputsAloneOnAMiss) {
     float t = -7.0f, u = -7.0f, v = -7.0f;
     const bool hit =
-        intersect_triangle(make_watertight_ray(make_ray(vec3(2.0f, 2.0f, -1.0f), vec3(0, 0, 1))),
+        intersect_triangle(make_watertight_ray(ray_from(vec3(2.0f, 2.0f, -1.0f), vec3(0, 0, 1))),
                            vec3(0.0f), vec3(1, 0, 0), vec3(0, 1, 0), 0.0f, infinity, t, u, v);
     EXPECT_FALSE(hit);
     EXPECT_EQ(t, -7.0f);
@@ -131,7 +131,7 @@ TEST(WatertightTriangle, CountsRaysThroughVerticesAndEdgesAsHits) {
     for (const vec3 p : points) {
         for (const float dz : {1.0f, -1.0f}) {
             const Hit3 h =
-                trace(make_ray(p - vec3(0.0f, 0.0f, 2.0f * dz), vec3(0, 0, dz)), a, b, c);
+                trace(ray_from(p - vec3(0.0f, 0.0f, 2.0f * dz), vec3(0, 0, dz)), a, b, c);
             EXPECT_TRUE(h.hit) << p.x << " " << p.y;
             EXPECT_EQ(h.t, 2.0f);
         }
@@ -140,14 +140,14 @@ TEST(WatertightTriangle, CountsRaysThroughVerticesAndEdgesAsHits) {
 
 TEST(WatertightTriangle, ZeroDirectionAndNanInputsNeverHit) {
     const vec3 a(0.0f), b(1.0f, 0.0f, 0.0f), c(0.0f, 1.0f, 0.0f);
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_FALSE(trace(make_ray(vec3(0.2f, 0.2f, -1.0f), vec3(0.0f)), a, b, c).hit);
-    EXPECT_FALSE(trace(make_ray(vec3(0.2f, 0.2f, -1.0f), vec3(0, 0, nan)), a, b, c).hit);
-    EXPECT_FALSE(trace(make_ray(vec3(0.2f, nan, -1.0f), vec3(0, 0, 1)), a, b, c).hit);
+    const float qnan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(trace(ray_from(vec3(0.2f, 0.2f, -1.0f), vec3(0.0f)), a, b, c).hit);
+    EXPECT_FALSE(trace(ray_from(vec3(0.2f, 0.2f, -1.0f), vec3(0, 0, qnan)), a, b, c).hit);
+    EXPECT_FALSE(trace(ray_from(vec3(0.2f, qnan, -1.0f), vec3(0, 0, 1)), a, b, c).hit);
     EXPECT_FALSE(
-        trace(make_ray(vec3(0.2f, 0.2f, -1.0f), vec3(0, 0, 1)), vec3(nan, 0, 0), b, c).hit);
+        trace(ray_from(vec3(0.2f, 0.2f, -1.0f), vec3(0, 0, 1)), vec3(qnan, 0, 0), b, c).hit);
     EXPECT_FALSE(
-        trace(make_ray(vec3(0.2f, 0.2f, -1.0f), vec3(0, 0, 1)), vec3(0, 0, nan), b, c).hit);
+        trace(ray_from(vec3(0.2f, 0.2f, -1.0f), vec3(0, 0, 1)), vec3(0, 0, qnan), b, c).hit);
 }
 
 TEST(WatertightTriangle, DecidesEdgeFunctionsThatRoundToZeroInDouble) {
@@ -157,7 +157,7 @@ TEST(WatertightTriangle, DecidesEdgeFunctionsThatRoundToZeroInDouble) {
     // the exact side must be hit (without the double fallback both claim the ray).
     std::mt19937 rng(29);
     std::uniform_real_distribution<float> uni(0.5f, 2.0f);
-    const Ray ray = make_ray(vec3(0.0f), vec3(0.0f, 0.0f, 1.0f));
+    const Ray ray = ray_from(vec3(0.0f), vec3(0.0f, 0.0f, 1.0f));
     int found = 0;
     for (int i = 0; i < 100000 && found < 50; ++i) {
         const vec3 b(uni(rng), uni(rng), 1.0f);
@@ -187,10 +187,10 @@ TEST(WatertightTriangle, DecidesEdgeFunctionsThatRoundToZeroInDouble) {
 
 TEST(WatertightTriangle, NeverHitsZeroAreaOrCollinearTriangles) {
     // Exactly collinear in float: c - a = 2 (b - a), and three identical vertices.
-    struct Tri {
+    struct Corners {
         vec3 a, b, c;
     };
-    const Tri tris[] = {
+    const Corners tris[] = {
         {vec3(0.0f), vec3(1.0f, 1.0f, 1.0f), vec3(2.0f, 2.0f, 2.0f)},
         {vec3(0.5f, -0.25f, 0.0f), vec3(1.5f, 0.75f, 0.5f), vec3(3.5f, 2.75f, 1.5f)},
         {vec3(-1.0f, 0.0f, 0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 0.0f, 0.0f)},
@@ -201,14 +201,14 @@ TEST(WatertightTriangle, NeverHitsZeroAreaOrCollinearTriangles) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> uni(0.0f, 1.0f);
     int rays = 0;
-    for (const Tri& tri : tris) {
+    for (const Corners& tri : tris) {
         ASSERT_TRUE(is_zero_area_triangle(tri.a, tri.b, tri.c));
         for (int i = 0; i < 2000; ++i) {
             // aim at a point of the segment (or the vertex) from a random direction
             const float s = uni(rng);
             const vec3 target = tri.a + s * (tri.c - tri.a);
             const vec3 dir(uni(rng) - 0.5f, uni(rng) - 0.5f, uni(rng) - 0.5f);
-            const Ray ray = make_ray(target - 3.0f * dir, dir);
+            const Ray ray = ray_from(target - 3.0f * dir, dir);
             float t = 0.0f, u = 0.0f, v = 0.0f;
             const bool hit = intersect_triangle(make_watertight_ray(ray), tri.a, tri.b, tri.c,
                                                 -infinity, infinity, t, u, v);
@@ -246,7 +246,7 @@ TEST(WatertightTriangle, MatchesADoubleOracleOnRandomRays) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> uni(-1.0f, 1.0f);
     int hits = 0, misses = 0;
-    for (int i = 0; i < oracle_rays; ++i) {
+    for (int i = 0; i < triangle_oracle_rays; ++i) {
         const vec3 a(uni(rng), uni(rng), uni(rng)), b(uni(rng), uni(rng), uni(rng)),
             c(uni(rng), uni(rng), uni(rng));
         const vec3 n = glm::cross(b - a, c - a);
@@ -261,7 +261,7 @@ TEST(WatertightTriangle, MatchesADoubleOracleOnRandomRays) {
         if (inside ? margin < 0.01f : margin > -0.01f) continue;
         const vec3 target = a + wb * (b - a) + wc * (c - a);
         const vec3 org = 3.0f * vec3(uni(rng), uni(rng), uni(rng));
-        const Ray ray = make_ray(org, (target - org) * (1.0f + 0.5f * uni(rng)));
+        const Ray ray = ray_from(org, (target - org) * (1.0f + 0.5f * uni(rng)));
         if (std::abs(glm::dot(glm::normalize(n), glm::normalize(ray.dir))) < 0.05f) continue;
         const OracleHit o = oracle(ray, a, b, c);
         const Hit3 h = trace(ray, a, b, c);
@@ -275,8 +275,8 @@ TEST(WatertightTriangle, MatchesADoubleOracleOnRandomRays) {
         EXPECT_NEAR(h.u, o.u, 1e-4) << "ray " << i;
         EXPECT_NEAR(h.v, o.v, 1e-4) << "ray " << i;
     }
-    EXPECT_GT(hits, oracle_rays / 10);
-    EXPECT_GT(misses, oracle_rays / 10);
+    EXPECT_GT(hits, triangle_oracle_rays / 10);
+    EXPECT_GT(misses, triangle_oracle_rays / 10);
 }
 
 // --- watertightness (numerics.md §1) -----------------------------------------------------------

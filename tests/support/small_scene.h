@@ -1,0 +1,17 @@
+// Test support: a scene's camera narrowed to a few pixels, for renders that tests can afford.
+#pragma once
+
+#include <algorithm>
+
+#include "scene/scene.h"
+
+namespace raylane {
+
+/// `scene` rendered `width` pixels wide, its aspect ratio kept (at least one row).
+inline Scene small_scene(Scene scene, int width) {
+    scene.camera.height = std::max(1, scene.camera.height * width / scene.camera.width);
+    scene.camera.width = width;
+    return scene;
+}
+
+}  // namespace raylane
