@@ -14,6 +14,8 @@
 #include "render/sample_sum_packet.h"
 #include "render/tiles.h"
 #include "scene/features.h"
+#include "shade/optics_packet.h"
+#include "shade/optics_scalar.h"
 #include "shade/shade_packet.h"
 #include "simd/hash.h"
 #include "traverse/intersect_block.h"

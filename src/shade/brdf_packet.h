@@ -1,7 +1,8 @@
-// shade: BRDF lobes, shading factors, lobe sampling, Fresnel and Beer's law for W shading points
-// that share one material. Mirrors brdf_scalar.h: same names, same order, same operation order,
-// so W = 1 matches the scalar path bit for bit and wider packets differ only by the vector
-// exp / log / log1p / expm1 / sin / cos of xsimd (a few ulps; see brdf_packet_test.cpp).
+// shade: BRDF lobes, shading factors and lobe sampling for W shading points that share one
+// material (Fresnel, refraction and Beer's law: optics_packet.h). Mirrors brdf_scalar.h: same
+// names, same order, same operation order, so W = 1 matches the scalar path bit for bit and wider
+// packets differ only by the vector exp / log / log1p / expm1 / sin / cos of xsimd (a few ulps; see
+// brdf_packet_test.cpp).
 //
 // Every function is lane-wise and pure: nothing is written to memory except the out-parameters,
 // which get every lane. Lanes that fail a condition (ci <= 0, TIR, ...) get the same values as
@@ -93,11 +94,6 @@ inline vfloat<W> ward_gaussian(const vfloat<W>& t2, float a2) {
 template <int W>
 inline Vec3<W> around_axis(const Vec3<W>& axis, const vfloat<W>& cos_t, const vfloat<W>& sin_t,
                            const vfloat<W>& phi);
-
-template <int W>
-inline vfloat<W> transmitted_cos2(const vfloat<W>& ci, const vfloat<W>& eta) {
-    return ((eta - 1.0f) * (eta + 1.0f) + ci * ci) / (eta * eta);
-}
 
 template <int W>
 inline vfloat<W> select0(const vmask<W>& m, const vfloat<W>& v) {
@@ -367,77 +363,6 @@ inline vfloat<W> pdf_blinn_phong(const Vec3<W>& n, const Vec3<W>& wi, const Vec3
     const vfloat<W> pdf_h = ((e + 1.0f) * inv_two_pi) * exp<W>((-0.5f * e) * log1p<W>(t2));
     const vfloat<W> p = min(pdf_h / (2.0f * sqrt(dot(h, h))), vfloat<W>(brdf_lobe_max));
     return select0<W>(mask_and(co > zero, hz > zero), p);
-}
-
-// ---- Fresnel and optics ---------------------------------------------------------------------
-
-template <int W>
-inline vfloat<W> schlick(const vfloat<W>& r0, const vfloat<W>& cos_theta) {
-    const vfloat<W> c = min(max(cos_theta, vfloat<W>(0.0f)), vfloat<W>(1.0f));
-    const vfloat<W> m = 1.0f - c;
-    const vfloat<W> m2 = m * m;
-    return r0 + (1.0f - r0) * (m2 * m2 * m);
-}
-
-template <int W>
-inline vfloat<W> fresnel_dielectric(const vfloat<W>& cos_i, const vfloat<W>& eta,
-                                    const vfloat<W>& cos_t) {
-    const vfloat<W> zero(0.0f), one(1.0f);
-    const vfloat<W> ci = min(max(cos_i, zero), one);
-    const vfloat<W> ct = min(max(cos_t, zero), one);
-    const vfloat<W> r_par = (eta * ci - ct) / (eta * ci + ct);
-    const vfloat<W> r_perp = (ci - eta * ct) / (ci + eta * ct);
-    const vfloat<W> r = 0.5f * (r_par * r_par + r_perp * r_perp);
-    return select(ci > zero, r, one);
-}
-
-template <int W>
-inline vfloat<W> fresnel_dielectric(const vfloat<W>& cos_i, const vfloat<W>& eta) {
-    const vfloat<W> zero(0.0f), one(1.0f);
-    const vfloat<W> ci = min(max(cos_i, zero), one);
-    const vfloat<W> cos2_t = brdf_detail::transmitted_cos2<W>(ci, eta);
-    const vfloat<W> cos_t = select(eta == one, ci, sqrt(max(cos2_t, zero)));
-    // index-matched (eta 1): no interface, R = 0 even where 1 - cos^2 rounds to 1
-    return select(mask_or(cos2_t > zero, eta == one), fresnel_dielectric<W>(ci, eta, cos_t), one);
-}
-
-template <int W>
-inline Vec3<W> reflect_direction(const Vec3<W>& d, const Vec3<W>& n) {
-    return d - n * (2.0f * dot(d, n));
-}
-
-/// Returns the lanes that refract (false = total internal reflection: t = mirror, cos_t = 0).
-template <int W>
-inline vmask<W> refract_direction(const Vec3<W>& d, const Vec3<W>& n_facing, const vfloat<W>& eta,
-                                  Vec3<W>& t, vfloat<W>& cos_t) {
-    const vfloat<W> zero(0.0f), one(1.0f);
-    const vfloat<W> ci = min(max(neg(dot(d, n_facing)), zero), one);
-    const vmask<W> unit = eta == one;
-    const vfloat<W> cos2_t = brdf_detail::transmitted_cos2<W>(ci, eta);
-    const vmask<W> refracts = cos2_t > zero;
-    const vfloat<W> ct = sqrt(max(cos2_t, zero));
-    const Vec3<W> refracted = d / eta - n_facing * (ct - ci / eta);
-    t = select(unit, d, select(refracts, refracted, reflect_direction(d, n_facing)));
-    cos_t = select(unit, ci, select(refracts, ct, zero));
-    return mask_or(unit, refracts);
-}
-
-namespace brdf_detail {
-template <int W>
-inline vfloat<W> beer_channel(float filter, const vfloat<W>& distance) {
-    const vfloat<W> zero(0.0f), one(1.0f);
-    if (!(filter < 1.0f)) return one;
-    if (!(filter > 0.0f)) return select(distance > zero, zero, one);
-    return select(distance > zero, exp<W>(distance * std::log(filter)), one);
-}
-}  // namespace brdf_detail
-
-/// filter shared by all lanes (a material's), distance per lane.
-template <int W>
-inline Vec3<W> beer_transmittance(vec3 filter, const vfloat<W>& distance) {
-    using namespace brdf_detail;
-    return {beer_channel<W>(filter.x, distance), beer_channel<W>(filter.y, distance),
-            beer_channel<W>(filter.z, distance)};
 }
 
 }  // namespace raylane

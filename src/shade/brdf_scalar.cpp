@@ -1,8 +1,10 @@
-// shade: BRDF lobes, shading factors, lobe sampling, Fresnel and Beer's law (reference path).
+// shade: BRDF lobes, shading factors and lobe sampling (reference path).
 // Mirrored by brdf_packet.h; every expression there has the same operation order.
 #include "shade/brdf_scalar.h"
 
 #include <cmath>
+
+#include "core/min_max.h"
 
 namespace raylane {
 
@@ -13,11 +15,6 @@ constexpr float inv_pi = std::numbers::inv_pi_v<float>;
 constexpr float two_pi = 2.0f * pi;
 constexpr float four_pi = 4.0f * pi;
 constexpr float inv_two_pi = 0.5f * inv_pi;
-
-// a < b ? a : b and a > b ? a : b: the NaN order of _mm_min_ps / _mm_max_ps (b when NaN), which
-// the packet path gets from simd/math.h.
-float min_of(float a, float b) { return a < b ? a : b; }
-float max_of(float a, float b) { return a > b ? a : b; }
 
 /// Exponent e >= 0 (NaN -> 0).
 float clamp_exponent(float e) { return max_of(e, 0.0f); }
@@ -43,12 +40,6 @@ vec3 around_axis(vec3 axis, float cos_t, float sin_t, float phi) {
     vec3 t, b;
     orthonormal_basis(axis, t, b);
     return t * (sin_t * std::cos(phi)) + b * (sin_t * std::sin(phi)) + axis * cos_t;
-}
-
-/// cos^2(theta_t) = 1 - (1 - ci^2) / eta^2, written ((eta - 1)(eta + 1) + ci^2) / eta^2: no
-/// cancellation at grazing incidence for eta near 1 (eta - 1 is exact there).
-float transmitted_cos2(float ci, float eta) {
-    return ((eta - 1.0f) * (eta + 1.0f) + ci * ci) / (eta * eta);
 }
 
 LobeSample sample_ward_common(vec3 n, vec3 wo, float alpha, float u1, float u2, bool duer) {
@@ -229,65 +220,6 @@ float pdf_blinn_phong(vec3 n, vec3 wi, vec3 wo, float exponent) {
     const float pdf_h = ((e + 1.0f) * inv_two_pi) * std::exp((-0.5f * e) * std::log1p(t2));
     // wo.h = |H| / 2 for unit wi, wo
     return min_of(pdf_h / (2.0f * std::sqrt(glm::dot(h, h))), brdf_lobe_max);
-}
-
-// ---- Fresnel and optics ---------------------------------------------------------------------
-
-float schlick(float r0, float cos_theta) {
-    const float c = min_of(max_of(cos_theta, 0.0f), 1.0f);
-    const float m = 1.0f - c;
-    const float m2 = m * m;
-    return r0 + (1.0f - r0) * (m2 * m2 * m);
-}
-
-float fresnel_dielectric(float cos_i, float eta, float cos_t) {
-    const float ci = min_of(max_of(cos_i, 0.0f), 1.0f);
-    const float ct = min_of(max_of(cos_t, 0.0f), 1.0f);
-    const float r_par = (eta * ci - ct) / (eta * ci + ct);
-    const float r_perp = (ci - eta * ct) / (ci + eta * ct);
-    const float r = 0.5f * (r_par * r_par + r_perp * r_perp);
-    return ci > 0.0f ? r : 1.0f;
-}
-
-float fresnel_dielectric(float cos_i, float eta) {
-    const float ci = min_of(max_of(cos_i, 0.0f), 1.0f);
-    const float cos2_t = transmitted_cos2(ci, eta);
-    const float cos_t = eta == 1.0f ? ci : std::sqrt(max_of(cos2_t, 0.0f));
-    // index-matched (eta 1): no interface, R = 0 even where 1 - cos^2 rounds to 1
-    return cos2_t > 0.0f || eta == 1.0f ? fresnel_dielectric(ci, eta, cos_t) : 1.0f;
-}
-
-bool refract_direction(vec3 d, vec3 n_facing, float eta, vec3& t, float& cos_t) {
-    const float ci = min_of(max_of(-glm::dot(d, n_facing), 0.0f), 1.0f);
-    if (eta == 1.0f) {
-        t = d;
-        cos_t = ci;
-        return true;
-    }
-    const float cos2_t = transmitted_cos2(ci, eta);
-    if (!(cos2_t > 0.0f)) {
-        t = reflect_direction(d, n_facing);
-        cos_t = 0.0f;
-        return false;
-    }
-    cos_t = std::sqrt(cos2_t);
-    t = d / eta - n_facing * (cos_t - ci / eta);
-    return true;
-}
-
-vec3 reflect_direction(vec3 d, vec3 n) { return d - n * (2.0f * glm::dot(d, n)); }
-
-namespace {
-float beer_channel(float filter, float distance) {
-    if (!(distance > 0.0f) || !(filter < 1.0f)) return 1.0f;
-    if (!(filter > 0.0f)) return 0.0f;
-    return std::exp(distance * std::log(filter));  // distance = inf: exp(-inf) = 0
-}
-}  // namespace
-
-vec3 beer_transmittance(vec3 filter, float distance) {
-    return vec3(beer_channel(filter.x, distance), beer_channel(filter.y, distance),
-                beer_channel(filter.z, distance));
 }
 
 }  // namespace raylane

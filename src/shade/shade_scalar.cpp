@@ -9,6 +9,7 @@
 #include "scene/mesh_normals.h"
 #include "shade/brdf_scalar.h"
 #include "shade/lights_scalar.h"
+#include "shade/optics_scalar.h"
 #include "shade/texture_scalar.h"
 #include "traverse/intersect_scalar.h"
 

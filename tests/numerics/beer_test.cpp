@@ -21,6 +21,8 @@
 #include "render/render_scalar.h"
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
+#include "shade/optics_packet.h"
+#include "shade/optics_scalar.h"
 #include "simd/lanes.h"
 #include "support/float_values.h"
 #include "support/widths.h"
@@ -36,12 +38,12 @@ const float flt_min = std::numeric_limits<float>::min();
 const std::vector<float> filters = {0.0f,   flt_min,           1e-30f, 1e-3f, 0.3678794f, 0.5f,
                                     0.999f, 1.0f - 0x1.0p-24f, 1.0f};
 /// Valid distances in increasing order: 0, a denormal, tiny, 1, large, huge, infinite.
-const std::vector<float> distances = {0.0f, 1e-40f, 1e-9f, 1.0f, 1e3f, 1e30f, flt_max, inf};
+const std::vector<float> distances = {0.0f, 1e-40f, 1e-9f, 1.0f, 1e3f, 1e30f, flt_max, inf_f};
 /// Inputs no scene should produce, which must still give a transmittance in [0, 1]: a denormal
 /// filter (0 under the harness's denormals-are-zero, as in every render thread), filters outside
 /// [0, 1], negative, NaN and -0 distances.
-const std::vector<float> odd_filters = {1e-40f, -0.5f, 1.5f, nan, inf, -inf, -0.0f};
-const std::vector<float> odd_distances = {-0.0f, -1.0f, -inf, nan};
+const std::vector<float> odd_filters = {1e-40f, -0.5f, 1.5f, nan_f, inf_f, -inf_f, -0.0f};
+const std::vector<float> odd_distances = {-0.0f, -1.0f, -inf_f, nan_f};
 
 /// filter^distance in double with Beer's conventions: d = 0 -> 1, f = 1 -> 1 (also for d = inf),
 /// f = 0 and d > 0 -> 0, d = inf and f < 1 -> 0.
@@ -78,9 +80,9 @@ TEST(BeerGrid, StaysInTheUnitIntervalAndFollowsThePowerLaw) {
         }
     }
     // sigma = 0 along an infinite path (a ray leaving an open mesh from inside): exp(-0 inf)
-    EXPECT_EQ(beer_transmittance(vec3(1.0f), inf), vec3(1.0f));
+    EXPECT_EQ(beer_transmittance(vec3(1.0f), inf_f), vec3(1.0f));
     EXPECT_EQ(beer_transmittance(vec3(0.0f), 0.0f), vec3(1.0f)) << "sigma = inf over d = 0";
-    EXPECT_EQ(beer_transmittance(vec3(0.0f), inf), vec3(0.0f));
+    EXPECT_EQ(beer_transmittance(vec3(0.0f), inf_f), vec3(0.0f));
     std::printf("beer grid: max relative error against pow %.3g\n", worst);
 }
 

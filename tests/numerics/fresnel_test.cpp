@@ -19,6 +19,8 @@
 #include "render/render_scalar.h"
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
+#include "shade/optics_packet.h"
+#include "shade/optics_scalar.h"
 #include "simd/lanes.h"
 #include "support/float_values.h"
 #include "support/widths.h"
@@ -28,7 +30,7 @@ namespace {
 
 using namespace test;
 
-constexpr double eps = 0x1.0p-24;  // unit roundoff of float
+constexpr double float_eps = 0x1.0p-24;  // unit roundoff of float
 
 const float etas[] = {1.0f, 1.0001f, 1.5f, 4.0f, 1.0f / 1.0001f, 1.0f / 1.5f, 0.25f};
 
@@ -68,7 +70,7 @@ double r_tolerance(float cos_i, float eta_f) {
         const double rs = (ci - eta * ct) / (ci + eta * ct), rp = (eta * ci - ct) / (eta * ci + ct);
         return 0.5 * (rs * rs + rp * rp);
     };
-    const double err = 8 * eps * (std::fabs((eta - 1) * (eta + 1)) + ci * ci) / (eta * eta);
+    const double err = 8 * float_eps * (std::fabs((eta - 1) * (eta + 1)) + ci * ci) / (eta * eta);
     const double slope = std::fabs(r_of(c2 + err) - r_of(std::max(c2 - err, 0.0)));
     return 1e-6 + slope;
 }
@@ -93,9 +95,9 @@ std::vector<float> cosine_grid() {
                             -1e-7f,
                             -0.5f,
                             -1.0f,
-                            nan,
-                            inf,
-                            -inf,
+                            nan_f,
+                            inf_f,
+                            -inf_f,
                             std::nextafter(1.0f, 0.0f),
                             std::nextafter(1.0f, 2.0f)};
     for (float eta : etas) {
@@ -192,8 +194,8 @@ TEST(FresnelGrid, RefractsWithoutNaNAndDecidesTotalInternalReflectionAsTheOracle
             if (!(c >= 0.0f && c <= 1.0f)) continue;
             const float s = float(std::sqrt(std::max(0.0, 1.0 - double(c) * c)));
             const vec3 d(s, 0.0f, -c);  // cos_i = -d.n = c exactly
-            vec3 t(nan);
-            float cos_t = nan;
+            vec3 t(nan_f);
+            float cos_t = nan_f;
             const bool refracts = refract_direction(d, n, eta, t, cos_t);
             const std::string at = fresnel_where(c, eta);
             ASSERT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) << at;

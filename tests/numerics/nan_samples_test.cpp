@@ -31,10 +31,10 @@ TEST(SampleKind, ClassifiesByTheBits) {
     const float neg_nan = std::bit_cast<float>(0xffc00001u);
     EXPECT_EQ(sample_kind(vec3(0.0f, -0.0f, 1.0f)), SampleKind::finite);
     EXPECT_EQ(sample_kind(vec3(tiny, big, -big)), SampleKind::finite);
-    EXPECT_EQ(sample_kind(vec3(inf, 0.0f, 0.0f)), SampleKind::inf);
-    EXPECT_EQ(sample_kind(vec3(0.0f, -inf, 0.0f)), SampleKind::inf);
-    EXPECT_EQ(sample_kind(vec3(0.0f, 0.0f, nan)), SampleKind::nan);
-    EXPECT_EQ(sample_kind(vec3(inf, snan, 0.0f)), SampleKind::nan);  // NaN wins over Inf
+    EXPECT_EQ(sample_kind(vec3(inf_f, 0.0f, 0.0f)), SampleKind::inf);
+    EXPECT_EQ(sample_kind(vec3(0.0f, -inf_f, 0.0f)), SampleKind::inf);
+    EXPECT_EQ(sample_kind(vec3(0.0f, 0.0f, nan_f)), SampleKind::nan);
+    EXPECT_EQ(sample_kind(vec3(inf_f, snan, 0.0f)), SampleKind::nan);  // NaN wins over Inf
     EXPECT_EQ(sample_kind(vec3(neg_nan, 1.0f, 1.0f)), SampleKind::nan);
 }
 
@@ -47,10 +47,10 @@ TYPED_TEST(SampleKindPacket, ClassifiesEveryLaneAsTheScalar) {
     const float values[] = {0.0f,
                             -0.0f,
                             1.0f,
-                            nan,
-                            -nan,
-                            inf,
-                            -inf,
+                            nan_f,
+                            -nan_f,
+                            inf_f,
+                            -inf_f,
                             std::numeric_limits<float>::denorm_min(),
                             std::numeric_limits<float>::max(),
                             std::bit_cast<float>(0x7f800001u)};
@@ -78,7 +78,7 @@ Scene scene_with_nan_material() {
     Scene scene = make_builtin_scene();
     scene.camera.height = scene.camera.height * 64 / scene.camera.width;
     scene.camera.width = 64;
-    scene.materials.at(0).c_d = vec3(0.5f, nan, 0.5f);
+    scene.materials.at(0).c_d = vec3(0.5f, nan_f, 0.5f);
     return scene;
 }
 

@@ -18,6 +18,8 @@
 
 #include "core/ray_packet.h"
 #include "shade/brdf_scalar.h"
+#include "shade/optics_packet.h"
+#include "shade/optics_scalar.h"
 #include "simd/lanes.h"
 #include "support/widths.h"
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "shade/brdf_scalar.h"
+#include "shade/optics_scalar.h"
 #include "support/float_values.h"
 
 namespace raylane {
@@ -975,18 +976,18 @@ TEST(ReflectDirection, MirrorsAboutTheNormal) {
 }
 
 TEST(BeerTransmittance, FollowsThePowerLawAndItsLimits) {
-    const float inf = std::numeric_limits<float>::infinity();
-    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf_f = std::numeric_limits<float>::infinity();
+    const float nan_f = std::numeric_limits<float>::quiet_NaN();
     EXPECT_EQ(beer_transmittance(vec3(0.0f), 1.0f), vec3(0.0f));
     EXPECT_EQ(beer_transmittance(vec3(0.0f), 1e-9f), vec3(0.0f));
     EXPECT_EQ(beer_transmittance(vec3(0.0f), 0.0f), vec3(1.0f));
     EXPECT_EQ(beer_transmittance(vec3(0.5f), 0.0f), vec3(1.0f));
-    EXPECT_EQ(beer_transmittance(vec3(1.0f), inf), vec3(1.0f));
-    EXPECT_EQ(beer_transmittance(vec3(0.999f), inf), vec3(0.0f));
-    EXPECT_EQ(beer_transmittance(vec3(0.5f, 1.0f, 0.0f), inf), vec3(0.0f, 1.0f, 0.0f));
-    EXPECT_EQ(beer_transmittance(vec3(0.5f), nan), vec3(1.0f));
+    EXPECT_EQ(beer_transmittance(vec3(1.0f), inf_f), vec3(1.0f));
+    EXPECT_EQ(beer_transmittance(vec3(0.999f), inf_f), vec3(0.0f));
+    EXPECT_EQ(beer_transmittance(vec3(0.5f, 1.0f, 0.0f), inf_f), vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_EQ(beer_transmittance(vec3(0.5f), nan_f), vec3(1.0f));
     const std::vector<float> filters = {0.0f, 1e-9f, 0.1f, 0.5f, 0.999f, 1.0f};
-    const std::vector<float> distances = {0.0f, 1e-9f, 0.5f, 1.0f, 3.0f, 1e3f, inf};
+    const std::vector<float> distances = {0.0f, 1e-9f, 0.5f, 1.0f, 3.0f, 1e3f, inf_f};
     for (float f : filters) {
         float previous = 1.0f;
         for (float d : distances) {

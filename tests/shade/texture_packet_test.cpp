@@ -56,7 +56,7 @@ float coordinate(std::mt19937& rng, int size) {
             return uniform(rng, -50.0f, 50.0f);
         default: {
             const float values[] = {0.0f,  -0.0f,  1.0f, -1.0f, 1e-30f, -1e-30f, 1.0f - 6e-8f,
-                                    1e20f, -1e20f, inf,  -inf,  nan,    2.0f,    0.5f};
+                                    1e20f, -1e20f, inf_f,  -inf_f,  nan_f,    2.0f,    0.5f};
             return values[pick(rng, 14)];
         }
     }
@@ -187,7 +187,7 @@ vec3 direction(std::mt19937& rng) {
         case 4:
             return random_unit(rng) * (pick(rng, 2) ? 1e30f : 1e-30f);
         default: {
-            const vec3 specials[] = {vec3(0.0f), vec3(nan, 0, 1), vec3(0, inf, 0),
+            const vec3 specials[] = {vec3(0.0f), vec3(nan_f, 0, 1), vec3(0, inf_f, 0),
                                      vec3(0, 1, 1e-30f), vec3(1e-30f, -1, 0)};
             return specials[pick(rng, 5)];
         }
@@ -267,7 +267,7 @@ TYPED_TEST(TexturePacket, NormalFromMapMatchesTheScalarBitForBit) {
                     dpdu = n * 3.0f;
                     break;
                 case 2:
-                    dpdu = vec3(nan, 1, 0);
+                    dpdu = vec3(nan_f, 1, 0);
                     break;
                 default:
                     break;
@@ -303,7 +303,7 @@ TYPED_TEST(TexturePacket, KeepAboveMatchesTheScalarBitForBit) {
                     n = -ref;
                     break;
                 case 1:
-                    n = vec3(nan, 0, 0);
+                    n = vec3(nan_f, 0, 0);
                     break;
                 case 2:  // near the threshold
                     n = glm::normalize(n - ref * glm::dot(n, ref) + ref * uniform(rng, 0, 0.02f));

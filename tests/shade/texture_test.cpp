@@ -162,9 +162,9 @@ TEST(TextureLookup, RepeatWrapsNegativeAndLargeCoordinates) {
 
 TEST(TextureLookup, StaysInBoundsForExtremeCoordinates) {
     const float big = std::numeric_limits<float>::max();
-    const float inf = std::numeric_limits<float>::infinity();
+    const float inf_f = std::numeric_limits<float>::infinity();
     const float specials[] = {0.0f,  -0.0f,  1.0f, -1e-30f, 1e-30f, 1.0f - 1e-7f, -1e-7f,
-                              1e30f, -1e30f, big,  -big,    inf,    -inf,         nan};
+                              1e30f, -1e30f, big,  -big,    inf_f,    -inf_f,         nan_f};
     for (int w : {1, 2, 7}) {
         for (int h : {1, 3}) {
             for (TextureFilter filter : {TextureFilter::nearest, TextureFilter::bilinear}) {
@@ -214,7 +214,7 @@ TEST(TextureLookup, CheckerAlternatesOnFloorParity) {
     EXPECT_EQ(texture_lookup(t, vec2(0.3f, 0.1f)), b);
     EXPECT_EQ(texture_lookup(t, vec2(-0.1f, 0.1f)), b);  // floor(-0.4) = -1
     EXPECT_EQ(texture_lookup(t, vec2(-0.1f, -0.1f)), a);
-    EXPECT_EQ(texture_lookup(t, vec2(nan, 0.1f)), vec3(0.0f));
+    EXPECT_EQ(texture_lookup(t, vec2(nan_f, 0.1f)), vec3(0.0f));
     EXPECT_EQ(texture_lookup(t, vec2(std::numeric_limits<float>::infinity(), 0.1f)), b);
 }
 
@@ -275,7 +275,7 @@ TEST(EnvironmentLookup, ReadsTheTexelTheDirectionNames) {
         EXPECT_FLOAT_EQ(environment_lookup(e, vec3(-1, 0, 0)).x, 3.5f);
         EXPECT_FLOAT_EQ(environment_lookup(e, vec3(-1, 0, -0.0f)).x, 3.5f);
         EXPECT_EQ(environment_lookup(e, vec3(0.0f)), vec3(0.0f));  // no direction: black
-        EXPECT_EQ(environment_lookup(e, vec3(nan, 0, 1)), vec3(0.0f));
+        EXPECT_EQ(environment_lookup(e, vec3(nan_f, 0, 1)), vec3(0.0f));
     }
 }
 
@@ -337,7 +337,7 @@ TEST(NormalFromMap, DegenerateTangentsAndTexelsStayFinite) {
         const vec3 special[] = {vec3(0, 0, 1), vec3(0, 0, -1), glm::normalize(vec3(1e-8f, 0, -1)),
                                 glm::normalize(vec3(0, -1e-8f, 1))};
         const vec3 n = i < 4 ? special[i] : random_unit_vector(rng);
-        const vec3 dpdus[] = {vec3(0.0f), n * 2.0f, -n, vec3(nan, 0, 0),
+        const vec3 dpdus[] = {vec3(0.0f), n * 2.0f, -n, vec3(nan_f, 0, 0),
                               vec3(std::numeric_limits<float>::infinity(), 0, 0)};
         for (vec3 dpdu : dpdus) {
             // red and green: T and B of a right-handed orthonormal frame around n
@@ -434,7 +434,7 @@ TEST(KeepAbove, BendsNormalsBelowTheHemisphereJustAboveIt) {
     }
     const vec3 r(0, 1, 0);
     EXPECT_EQ(keep_above(-r, r), r);  // opposite: no direction to bend towards
-    EXPECT_EQ(keep_above(vec3(nan, 0, 0), r), r);
+    EXPECT_EQ(keep_above(vec3(nan_f, 0, 0), r), r);
     expect_vec_near(keep_above(vec3(1, 0, 0), r),
                     vec3(std::sqrt(1.0f - 0.01f * 0.01f), 0.01f, 0.0f), 1e-6f);
 }

@@ -1,6 +1,6 @@
 // Test support: the awkward floats the numerics tests feed in, and small checks of the results.
-// Tests take them in with `using namespace test;` (in namespace raylane): the names are short, and
-// library code has locals of the same names.
+// Tests take them in with `using namespace test;`; the names must not be those of locals in the
+// library's inline code (nan, inf), which Clang's -Wshadow would report.
 #pragma once
 
 #include <cmath>
@@ -11,8 +11,8 @@
 
 namespace raylane::test {
 
-inline const float nan = std::numeric_limits<float>::quiet_NaN();
-inline const float inf = std::numeric_limits<float>::infinity();
+inline const float nan_f = std::numeric_limits<float>::quiet_NaN();
+inline const float inf_f = std::numeric_limits<float>::infinity();
 inline const float flt_max = std::numeric_limits<float>::max();
 inline constexpr double pi_d = 3.14159265358979323846;
 
