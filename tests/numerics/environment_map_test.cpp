@@ -72,8 +72,9 @@ std::vector<vec3> directions() {
     std::vector<vec3> out;
     for (float scale : {1.0f, 1e-30f, 1e-38f, 1e30f, flt_max / 2, flt_max})
         for (const vec3& d : base) out.push_back(d * scale);
-    for (vec3 bad : {vec3(0.0f), vec3(-0.0f), vec3(nan_f, 0, 1), vec3(0, nan_f, 0), vec3(inf_f, 0, 0),
-                     vec3(0, -inf_f, 0), vec3(1, inf_f, -inf_f), vec3(flt_max, flt_max, flt_max)})
+    for (vec3 bad :
+         {vec3(0.0f), vec3(-0.0f), vec3(nan_f, 0, 1), vec3(0, nan_f, 0), vec3(inf_f, 0, 0),
+          vec3(0, -inf_f, 0), vec3(1, inf_f, -inf_f), vec3(flt_max, flt_max, flt_max)})
         out.push_back(bad);
     return out;
 }
@@ -167,7 +168,8 @@ TYPED_TEST_SUITE(EnvironmentMapExtremesPacket, Widths, WidthName);
 TYPED_TEST(EnvironmentMapExtremesPacket, MatchesTheScalarBitForBitWithGarbageInactiveLanes) {
     constexpr int W = TypeParam::value;
     const std::vector<vec3> dirs = directions();
-    const vec3 garbage[] = {vec3(nan_f), vec3(inf_f, -inf_f, nan_f), vec3(0.0f), vec3(-flt_max, 0, 0)};
+    const vec3 garbage[] = {vec3(nan_f), vec3(inf_f, -inf_f, nan_f), vec3(0.0f),
+                            vec3(-flt_max, 0, 0)};
     auto same = [](float a, float b) {
         return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b) ||
                (std::isnan(a) && std::isnan(b));

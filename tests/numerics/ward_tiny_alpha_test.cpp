@@ -35,7 +35,8 @@ using dvec3 = glm::dvec3;
 
 /// From rough to zero, then values no material should hold.
 const float alphas[] = {1.0f, 0.1f, 1e-2f, 1e-3f, 1e-4f, 1e-6f, 1e-20f, 0.0f};
-const float below_threshold[] = {9.9e-5f, 1e-6f, 1e-20f, 1e-40f, 0.0f, -0.0f, -1e-3f, -inf_f, nan_f};
+const float below_threshold[] = {9.9e-5f, 1e-6f,  1e-20f, 1e-40f, 0.0f,
+                                 -0.0f,   -1e-3f, -inf_f, nan_f};
 
 /// One lane's configuration.
 struct Config {

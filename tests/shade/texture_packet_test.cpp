@@ -55,8 +55,8 @@ float coordinate(std::mt19937& rng, int size) {
         case 4:
             return uniform(rng, -50.0f, 50.0f);
         default: {
-            const float values[] = {0.0f,  -0.0f,  1.0f, -1.0f, 1e-30f, -1e-30f, 1.0f - 6e-8f,
-                                    1e20f, -1e20f, inf_f,  -inf_f,  nan_f,    2.0f,    0.5f};
+            const float values[] = {0.0f,  -0.0f,  1.0f,  -1.0f,  1e-30f, -1e-30f, 1.0f - 6e-8f,
+                                    1e20f, -1e20f, inf_f, -inf_f, nan_f,  2.0f,    0.5f};
             return values[pick(rng, 14)];
         }
     }
