@@ -14,8 +14,8 @@
 #include "render/sample_sum_packet.h"
 #include "render/tiles.h"
 #include "scene/features.h"
-#include "shade/optics_packet.h"
 #include "shade/optics_scalar.h"
+#include "shade/shade_io_packet.h"
 #include "shade/shade_packet.h"
 #include "simd/hash.h"
 #include "traverse/intersect_block.h"
@@ -116,7 +116,7 @@ int samples_per_wavefront(const Scene& scene, const ShadeParams& params) {
     return static_cast<int>(std::clamp<int64_t>(wavefront_ray_budget / rays, 1, max_batch_samples));
 }
 
-/// A wavefront's slots (shade_packet.h, SlotMap): sample j of the batch at tile slot i is slot
+/// A wavefront's slots (shade_io_packet.h, SlotMap): sample j of the batch at tile slot i is slot
 /// j * max_block_rays + i.
 constexpr int max_slots = max_batch_samples * max_block_rays;
 

@@ -24,8 +24,8 @@ namespace raylane {
 
 namespace brdf_detail {
 
-// Transcendentals: the std:: functions at W = 1 (as brdf_scalar.cpp), xsimd's otherwise.
-// (simd/math.h has none of these; they live here rather than in simd/.)
+// Transcendentals: the std:: functions at W = 1 (as brdf_scalar.cpp and optics_scalar.cpp), xsimd's
+// otherwise. (simd/math.h has none of these; they live here rather than in simd/.)
 template <int W>
 inline vfloat<W> exp(const vfloat<W>& x) {
     if constexpr (W == 1)

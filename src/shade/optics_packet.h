@@ -5,7 +5,8 @@
 
 #include <cmath>
 
-#include "shade/brdf_packet.h"
+#include "shade/brdf_packet.h"  // brdf_detail::exp: the same exp as the lobes
+#include "shade/optics_scalar.h"
 #include "simd/lanes.h"
 #include "simd/math.h"
 #include "simd/simd.h"

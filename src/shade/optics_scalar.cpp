@@ -42,6 +42,8 @@ float fresnel_dielectric(float cos_i, float eta) {
     return cos2_t > 0.0f || eta == 1.0f ? fresnel_dielectric(ci, eta, cos_t) : 1.0f;
 }
 
+vec3 reflect_direction(vec3 d, vec3 n) { return d - n * (2.0f * glm::dot(d, n)); }
+
 bool refract_direction(vec3 d, vec3 n_facing, float eta, vec3& t, float& cos_t) {
     const float ci = min_of(max_of(-glm::dot(d, n_facing), 0.0f), 1.0f);
     if (eta == 1.0f) {
@@ -59,8 +61,6 @@ bool refract_direction(vec3 d, vec3 n_facing, float eta, vec3& t, float& cos_t) 
     t = d / eta - n_facing * (cos_t - ci / eta);
     return true;
 }
-
-vec3 reflect_direction(vec3 d, vec3 n) { return d - n * (2.0f * glm::dot(d, n)); }
 
 namespace {
 

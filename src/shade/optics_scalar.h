@@ -22,15 +22,15 @@ float fresnel_dielectric(float cos_i, float eta, float cos_t);
 /// reflection; exactly 0 for eta == 1.
 float fresnel_dielectric(float cos_i, float eta);
 
+/// d - 2 (d.n) n.
+vec3 reflect_direction(vec3 d, vec3 n);
+
 /// Refracts unit d at unit n_facing (dot(d, n_facing) <= 0): cos_i = -d.n (clamped to [0, 1]),
 /// cos^2_t = 1 - (1 - cos^2_i) / eta^2 (evaluated as ((eta - 1)(eta + 1) + cos^2_i) / eta^2, which
 /// does not cancel at grazing incidence), t = d / eta - n_facing (cos_t - cos_i / eta). eta == 1
 /// gives t = d and cos_t = cos_i exactly. Returns false on total internal reflection
 /// (cos^2_t <= 0, i.e. sin^2_t >= 1), and then sets t to the mirror direction and cos_t to 0.
 bool refract_direction(vec3 d, vec3 n_facing, float eta, vec3& t, float& cos_t);
-
-/// d - 2 (d.n) n.
-vec3 reflect_direction(vec3 d, vec3 n);
 
 /// Beer's law: filter^distance per channel, as exp(distance log(filter)) with explicit rules:
 /// distance <= 0 (or NaN) -> 1; filter >= 1 (or NaN) -> 1, also for infinite distance;

@@ -1,7 +1,8 @@
-// shade: what the packet path's shading kernels read and write (shade_packet.h): closest hits in
-// arrays, queue entries gathered into registers (ShadeInput), and the two targets a batch writes
-// to - the wavefront's queues and slots (ShadeTarget) or a camera packet's registers and its
-// shadow rays in place (PacketTarget) - with the per-lane random numbers that both use.
+// shade: what the packet path's shading kernels (shade_packet.h) read and write in place of the
+// scalar path's recursion: closest hits in arrays, queue entries gathered into registers
+// (ShadeInput), and the two targets a batch writes to: the wavefront's queues and slots
+// (ShadeTarget), or a camera packet's registers and its shadow rays in place (PacketTarget).
+// Also the kernels' lane-wise helpers: random numbers keyed by pixel, sample and path.
 #pragma once
 
 #include <cstdint>
@@ -9,8 +10,7 @@
 
 #include "core/ray_packet.h"
 #include "render/path_queue.h"
-#include "scene/scene.h"
-#include "shade/texture_packet.h"
+#include "shade/shade_scalar.h"
 #include "simd/hash.h"
 #include "simd/lanes.h"
 #include "traverse/intersect_block.h"

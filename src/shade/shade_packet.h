@@ -13,6 +13,7 @@
 #include "accel/bvh.h"
 #include "core/offset_packet.h"
 #include "core/ray_packet.h"
+#include "core/rng.h"
 #include "render/path_queue.h"
 #include "scene/features.h"
 #include "scene/mesh_normals.h"

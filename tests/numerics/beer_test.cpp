@@ -1,5 +1,5 @@
 // Numerical stability suite, shading (numerics.md §10, checklist row 10): Beer's law of
-// shade/brdf_scalar.h (beer_transmittance) and its packet twin in brdf_packet.h on a grid of
+// shade/optics_scalar.h (beer_transmittance) and its packet twin in optics_packet.h on a grid of
 // absorbances and distances from 0 through tiny and huge to infinity, against pow in double;
 // then a rendered index-matched absorbing sphere, whose every pixel is L filter^chord.
 //
@@ -19,8 +19,6 @@
 #include "render/camera_rays.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
-#include "shade/brdf_packet.h"
-#include "shade/brdf_scalar.h"
 #include "shade/optics_packet.h"
 #include "shade/optics_scalar.h"
 #include "simd/lanes.h"

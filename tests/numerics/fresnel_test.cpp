@@ -1,8 +1,8 @@
 // Numerical stability suite, shading (numerics.md §9, checklist row 9): the exact dielectric
-// Fresnel term and refraction of shade/brdf_scalar.h and their packet twins in brdf_packet.h, on
-// a grid of indices (1, 1.0001, 1.5, 4 and their inverses) and cosines (0, tiny, near the critical
-// angle, 1, 1 + 1 ulp, garbage), against a double oracle. The eta = 1 sphere is rendered in
-// tests/render/render_features_test.cpp (RenderFeatures.GlassOfIndexOneIsInvisible).
+// Fresnel term and refraction of shade/optics_scalar.h and their packet twins in optics_packet.h,
+// on a grid of indices (1, 1.0001, 1.5, 4 and their inverses) and cosines (0, tiny, near the
+// critical angle, 1, 1 + 1 ulp, garbage), against a double oracle. The eta = 1 sphere is rendered
+// in tests/render/render_features_test.cpp (RenderFeatures.GlassOfIndexOneIsInvisible).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,8 +17,6 @@
 #include "render/camera_rays.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
-#include "shade/brdf_packet.h"
-#include "shade/brdf_scalar.h"
 #include "shade/optics_packet.h"
 #include "shade/optics_scalar.h"
 #include "simd/lanes.h"

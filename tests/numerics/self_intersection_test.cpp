@@ -10,7 +10,6 @@
 #include "io/load_scene.h"
 #include "numerics/geometry_support.h"
 #include "render/camera_rays.h"
-#include "shade/brdf_scalar.h"
 #include "shade/optics_scalar.h"
 #include "traverse/box_scalar.h"
 #include "traverse/sphere_scalar.h"

@@ -16,6 +16,8 @@
 namespace raylane {
 namespace {
 
+using namespace test;
+
 Scene scene_file(const std::string& name) {
     return load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name);
 }

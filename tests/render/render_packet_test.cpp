@@ -18,6 +18,8 @@
 namespace raylane {
 namespace {
 
+using namespace test;
+
 // Agreement: shading runs the scalar formulas lane by lane; only pow (xsimd's vs std::pow) and
 // the order of a few sums may differ, so colours agree to a few ulps of their magnitude:
 // tested on ImageDiff::max_rel (relative above 1, absolute below).

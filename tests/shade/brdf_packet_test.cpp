@@ -1,9 +1,10 @@
-// Tests of shade/brdf_packet.h against the scalar reference shade/brdf_scalar.h, at every width
-// this build runs. W = 1 must match bit for bit (same std:: calls, same operation order). Wider
-// packets use xsimd's exp / log1p / expm1 / sin / cos, a few ulps from libm; an error of d ulps in
-// the argument x of exp(x) becomes |x| d ulps in the result, so values are compared with a
-// relative tolerance of (16 + 4 |ln v|) * 2^-23 where v is the lobe value relative to its peak
-// (typically <= 1e-5 relative), and directions with an absolute 1e-6.
+// Tests of shade/brdf_packet.h and shade/optics_packet.h against the scalar references
+// shade/brdf_scalar.h and shade/optics_scalar.h, at every width this build runs. W = 1 must match
+// bit for bit (same std:: calls, same operation order). Wider packets use xsimd's exp / log1p /
+// expm1 / sin / cos, a few ulps from libm; an error of d ulps in the argument x of exp(x) becomes
+// |x| d ulps in the result, so values are compared with a relative tolerance of (16 + 4 |ln v|) *
+// 2^-23 where v is the lobe value relative to its peak (typically <= 1e-5 relative), and directions
+// with an absolute 1e-6.
 #include "shade/brdf_packet.h"
 
 #include <gtest/gtest.h>
@@ -253,7 +254,7 @@ TYPED_TEST(BrdfPacket, PhongLobeIsExactlyZeroWhereItsPacketsSkipIt) {
     const vec3 axis(0.0f, 0.0f, 1.0f);
     const Vec3<W> ax = make_vec3<W>(0.0f, 0.0f, 1.0f);
     // a direction whose chord to the axis has length^2 about c: unit with cos = 1 - c / 2, or
-    // for tiny c (huge e, where 1 - c / 2 brdf_rounds to 1) the axis plus a side step of sqrt(c)
+    // for tiny c (huge e, where 1 - c / 2 rounds to 1) the axis plus a side step of sqrt(c)
     auto at_chord2 = [&](float c) {
         if (c < 1e-3f) return vec3(std::sqrt(c), 0.0f, 1.0f);
         const float cos_t = 1.0f - 0.5f * c;

@@ -1,6 +1,7 @@
 // Tests of shade/brdf_scalar.h: lobe formulas, reciprocity, degenerate inputs, directional
 // albedo against brdf-reference.md section 6, sampler distributions (Kolmogorov-Smirnov and
-// chi-square), pdf normalisation, Fresnel and Beer's law. The packet twin: brdf_packet_test.cpp.
+// chi-square), pdf normalisation; and of shade/optics_scalar.h: Fresnel and Beer's law. The packet
+// twin: brdf_packet_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -976,8 +977,6 @@ TEST(ReflectDirection, MirrorsAboutTheNormal) {
 }
 
 TEST(BeerTransmittance, FollowsThePowerLawAndItsLimits) {
-    const float inf_f = std::numeric_limits<float>::infinity();
-    const float nan_f = std::numeric_limits<float>::quiet_NaN();
     EXPECT_EQ(beer_transmittance(vec3(0.0f), 1.0f), vec3(0.0f));
     EXPECT_EQ(beer_transmittance(vec3(0.0f), 1e-9f), vec3(0.0f));
     EXPECT_EQ(beer_transmittance(vec3(0.0f), 0.0f), vec3(1.0f));

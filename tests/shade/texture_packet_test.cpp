@@ -46,8 +46,7 @@ float coordinate(std::mt19937& rng, int size) {
         case 0:
         case 1:
             return uniform(rng, 0.0f, 1.0f);
-        case 2:  // texel centres and edges, and the points where the nearest rule texture_rounds at
-                 // .5
+        case 2:  // texel centres and edges, and the points where the nearest rule rounds at .5
             return static_cast<float>(pick(rng, 4 * size + 1)) / (4.0f * n) +
                    static_cast<float>(pick(rng, 5) - 2);
         case 3:

@@ -17,6 +17,8 @@
 namespace raylane {
 namespace {
 
+using namespace test;
+
 template <class T>
 class HashTest : public ::testing::Test {};
 TYPED_TEST_SUITE(HashTest, Widths, WidthName);

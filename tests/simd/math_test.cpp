@@ -19,6 +19,8 @@
 namespace raylane {
 namespace {
 
+using namespace test;
+
 constexpr float inf = std::numeric_limits<float>::infinity();
 
 // ---- helpers ---------------------------------------------------------------------------------

@@ -19,6 +19,8 @@
 namespace raylane {
 namespace {
 
+using namespace test;
+
 // ---- helpers ---------------------------------------------------------------------------------
 
 template <class T>

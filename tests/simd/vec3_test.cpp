@@ -18,6 +18,8 @@
 namespace raylane {
 namespace {
 
+using namespace test;
+
 // ---- helpers ---------------------------------------------------------------------------------
 
 template <class T>

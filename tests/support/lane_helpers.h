@@ -14,7 +14,7 @@
 
 #include "simd/simd.h"
 
-namespace raylane {
+namespace raylane::test {
 
 /// Random packets drawn per test by the tests of simd/.
 inline constexpr int rounds = 2000;
@@ -104,4 +104,4 @@ void expect_binary_matches(Op op, Oracle oracle, uint32_t seed) {
     }
 }
 
-}  // namespace raylane
+}  // namespace raylane::test

@@ -5,7 +5,7 @@
 
 #include "scene/scene.h"
 
-namespace raylane {
+namespace raylane::test {
 
 /// `scene` rendered `width` pixels wide, its aspect ratio kept (at least one row).
 inline Scene small_scene(Scene scene, int width) {
@@ -14,4 +14,4 @@ inline Scene small_scene(Scene scene, int width) {
     return scene;
 }
 
-}  // namespace raylane
+}  // namespace raylane::test
