@@ -26,31 +26,33 @@ inline bool same_float(float a, float b) {
     return (std::isnan(a) && std::isnan(b)) || bits_of(a) == bits_of(b);
 }
 
+/// The awkward values random_input draws from, and expect_binary_matches pairs exhaustively.
+inline constexpr float input_specials[] = {0.0f,
+                                           -0.0f,
+                                           1.0f,
+                                           -1.0f,
+                                           std::numeric_limits<float>::infinity(),
+                                           -std::numeric_limits<float>::infinity(),
+                                           std::numeric_limits<float>::quiet_NaN(),
+                                           -std::numeric_limits<float>::quiet_NaN(),
+                                           std::numeric_limits<float>::denorm_min(),
+                                           -std::numeric_limits<float>::denorm_min(),
+                                           1e-40f,
+                                           -1e-40f,
+                                           -3e-39f,
+                                           std::numeric_limits<float>::min(),
+                                           std::numeric_limits<float>::max(),
+                                           std::numeric_limits<float>::lowest(),
+                                           0.5f,
+                                           2.0f,
+                                           3.0f,
+                                           1e30f};
+
 /// A mix of awkward values, random bit patterns and ordinary numbers.
 inline float random_input(std::mt19937& rng) {
-    static constexpr float specials[] = {0.0f,
-                                         -0.0f,
-                                         1.0f,
-                                         -1.0f,
-                                         std::numeric_limits<float>::infinity(),
-                                         -std::numeric_limits<float>::infinity(),
-                                         std::numeric_limits<float>::quiet_NaN(),
-                                         -std::numeric_limits<float>::quiet_NaN(),
-                                         std::numeric_limits<float>::denorm_min(),
-                                         -std::numeric_limits<float>::denorm_min(),
-                                         1e-40f,
-                                         -1e-40f,
-                                         -3e-39f,
-                                         std::numeric_limits<float>::min(),
-                                         std::numeric_limits<float>::max(),
-                                         std::numeric_limits<float>::lowest(),
-                                         0.5f,
-                                         2.0f,
-                                         3.0f,
-                                         1e30f};
     switch (rng() % 4) {
         case 0:
-            return specials[rng() % std::size(specials)];
+            return input_specials[rng() % std::size(input_specials)];
         case 1:
             return std::bit_cast<float>(static_cast<uint32_t>(rng()));
         default:
@@ -87,13 +89,11 @@ std::array<bool, W> mask_lanes(const vmask<W>& m) {
     return a;
 }
 
-/// Applies op to random packets and oracle to their lanes; lanes must agree (same_float).
+/// Applies op to packets and oracle to their lanes; lanes must agree (same_float). The packets
+/// hold every pair of input_specials first, W pairs at a time, then random inputs.
 template <int W, class Op, class Oracle>
 void expect_binary_matches(Op op, Oracle oracle, uint32_t seed) {
-    std::mt19937 rng(seed);
-    for (int r = 0; r < rounds; ++r) {
-        const auto a = random_lanes<W>(rng);
-        const auto b = random_lanes<W>(rng);
+    auto check = [&](const std::array<float, W>& a, const std::array<float, W>& b) {
         const auto got = lanes_of<W>(op(load<W>(a.data()), load<W>(b.data())));
         for (int i = 0; i < W; ++i) {
             const float want = oracle(a[i], b[i]);
@@ -101,6 +101,22 @@ void expect_binary_matches(Op op, Oracle oracle, uint32_t seed) {
                 << "lane " << i << ": f(" << std::hexfloat << a[i] << ", " << b[i]
                 << ") = " << got[i] << ", want " << want;
         }
+    };
+    constexpr size_t n = std::size(input_specials);
+    for (size_t pair = 0; pair < n * n; pair += W) {
+        std::array<float, W> a{}, b{};
+        for (size_t i = 0; i < size_t(W); ++i) {
+            const size_t k = (pair + i) % (n * n);
+            a[i] = input_specials[k / n];
+            b[i] = input_specials[k % n];
+        }
+        check(a, b);
+        if (::testing::Test::HasFatalFailure()) return;
+    }
+    std::mt19937 rng(seed);
+    for (int r = 0; r < rounds; ++r) {
+        check(random_lanes<W>(rng), random_lanes<W>(rng));
+        if (::testing::Test::HasFatalFailure()) return;
     }
 }
 
