@@ -16,7 +16,7 @@
 # it). These builds check answers, not speed: -O1 takes the same code paths as -O3 (no
 # fast-math, no contraction either way). With these choices, and no raylane binary to build,
 # this step took 317–379 s in fresh-clone CI runs instead of 601 s (2026-12-03), and 220–242 s
-# with the test programs built as unity builds (batches of 8; the whole of .ci/run: 873–935 s).
+# with the test programs built as unity builds (batches of 8; the whole of .ci/run: 805–935 s).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
