@@ -15,6 +15,7 @@
 #include "io/load_image.h"
 #include "shade/texture_scalar.h"
 #include "support/float_values.h"
+#include "support/random_unit.h"
 #include "support/widths.h"
 
 namespace raylane {
@@ -71,14 +72,6 @@ Texture random_image(std::mt19937& rng) {
     t.texels.resize(static_cast<size_t>(t.width) * static_cast<size_t>(t.height) * 3);
     for (float& x : t.texels) x = uniform(rng, 0.0f, 4.0f);
     return t;
-}
-
-vec3 random_unit(std::mt19937& rng) {
-    std::normal_distribution<float> gauss;
-    for (;;) {
-        const vec3 v(gauss(rng), gauss(rng), gauss(rng));
-        if (glm::dot(v, v) > 1e-6f) return glm::normalize(v);
-    }
 }
 
 template <int W>

@@ -15,6 +15,7 @@
 #include "io/load_image.h"
 #include "shade/texture_scalar.h"
 #include "support/float_values.h"
+#include "support/random_unit.h"
 
 namespace raylane {
 namespace {
@@ -280,19 +281,11 @@ TEST(EnvironmentLookup, ReadsTheTexelTheDirectionNames) {
 
 // normal maps --------------------------------------------------------------------------------
 
-vec3 random_unit_vector(std::mt19937& rng) {
-    std::normal_distribution<float> gauss;
-    for (;;) {
-        const vec3 v(gauss(rng), gauss(rng), gauss(rng));
-        if (glm::dot(v, v) > 1e-4f) return glm::normalize(v);
-    }
-}
-
 TEST(NormalFromMap, FlatTangentTexelReturnsTheNormal) {
     std::mt19937 rng(4);
     for (int i = 0; i < 1000; ++i) {
-        const vec3 n = random_unit_vector(rng);
-        const vec3 dpdu = random_unit_vector(rng) * 3.0f;
+        const vec3 n = random_unit(rng);
+        const vec3 dpdu = random_unit(rng) * 3.0f;
         expect_vec_near(normal_from_map(NormalMapMode::tangent, vec3(0.5f, 0.5f, 1.0f), n, dpdu,
                                         glm::mat3(1.0f)),
                         n, 1e-6f);
@@ -315,8 +308,8 @@ TEST(NormalFromMap, TangentAxesAreDpduAndNCrossDpdu) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int i = 0; i < 1000; ++i) {
-        const vec3 nn = random_unit_vector(rng);
-        const vec3 du = random_unit_vector(rng);
+        const vec3 nn = random_unit(rng);
+        const vec3 du = random_unit(rng);
         if (std::fabs(glm::dot(nn, du)) > 0.99f) continue;
         const vec3 t = glm::normalize(du - nn * glm::dot(nn, du));
         const vec3 b = glm::cross(nn, t);
@@ -335,7 +328,7 @@ TEST(NormalFromMap, DegenerateTangentsAndTexelsStayFinite) {
         // numerics.md 13's hard cases for a basis: n = (0, 0, +-1), normalize(1e-8, 0, -1)
         const vec3 special[] = {vec3(0, 0, 1), vec3(0, 0, -1), glm::normalize(vec3(1e-8f, 0, -1)),
                                 glm::normalize(vec3(0, -1e-8f, 1))};
-        const vec3 n = i < 4 ? special[i] : random_unit_vector(rng);
+        const vec3 n = i < 4 ? special[i] : random_unit(rng);
         const vec3 dpdus[] = {vec3(0.0f), n * 2.0f, -n, vec3(nan_f, 0, 0),
                               vec3(std::numeric_limits<float>::infinity(), 0, 0)};
         for (vec3 dpdu : dpdus) {
@@ -395,8 +388,7 @@ TEST(NormalFromMap, AlwaysReturnsAUnitVector) {
     for (int i = 0; i < 2000; ++i) {
         const vec3 texel(unit(rng), unit(rng), unit(rng));
         for (NormalMapMode mode : {NormalMapMode::tangent, NormalMapMode::replace}) {
-            const vec3 r =
-                normal_from_map(mode, texel, random_unit_vector(rng), random_unit_vector(rng), m);
+            const vec3 r = normal_from_map(mode, texel, random_unit(rng), random_unit(rng), m);
             EXPECT_NEAR(glm::length(r), 1.0f, 1e-5f);
         }
     }
@@ -407,8 +399,8 @@ TEST(NormalFromMap, AlwaysReturnsAUnitVector) {
 TEST(KeepAbove, LeavesNormalsInTheHemisphereAlone) {
     std::mt19937 rng(8);
     for (int i = 0; i < 1000; ++i) {
-        const vec3 r = random_unit_vector(rng);
-        vec3 ns = random_unit_vector(rng);
+        const vec3 r = random_unit(rng);
+        vec3 ns = random_unit(rng);
         if (glm::dot(ns, r) < 0.02f) ns = glm::normalize(ns + r * (0.05f - glm::dot(ns, r)));
         if (glm::dot(ns, r) < texture_detail::keep_above_cos) continue;
         EXPECT_EQ(keep_above(ns, r), ns);
@@ -419,8 +411,8 @@ TEST(KeepAbove, BendsNormalsBelowTheHemisphereJustAboveIt) {
     // numerics.md 13: normals tilted up to and past 90 degrees, in random directions
     std::mt19937 rng(9);
     for (int i = 0; i < 3000; ++i) {
-        const vec3 r = random_unit_vector(rng);
-        const vec3 ns = random_unit_vector(rng);
+        const vec3 r = random_unit(rng);
+        const vec3 ns = random_unit(rng);
         const vec3 k = keep_above(ns, r);
         ASSERT_NEAR(glm::length(k), 1.0f, 1e-5f);
         ASSERT_GE(glm::dot(k, r), texture_detail::keep_above_cos - 1e-5f);
