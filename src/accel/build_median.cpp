@@ -93,7 +93,9 @@ uint32_t order_key(float f) {
 /// Sorts the ids 0 .. n-1 by order_key(values[id]), stably (equal keys in id order), into
 /// `out`: LSD radix sort of (key << 32 | id) items in passes of `digit_bits` bits, skipping the
 /// digits every key shares. Wide digits make fewer passes; narrow ones keep the histograms
-/// small for small n. `items` and `scratch` hold n items each.
+/// small for small n. The first pass that moves anything makes the items from the values as it
+/// scatters them (no array of items is written and read back first), and the last writes the
+/// ids alone. `items` and `scratch` hold n items each.
 template <int digit_bits>
 void sort_ids_by_key(const float* values, size_t n, uint32_t* out, uint64_t* items,
                      uint64_t* scratch) {
@@ -104,35 +106,49 @@ void sort_ids_by_key(const float* values, size_t n, uint32_t* out, uint64_t* ite
         const uint32_t key = order_key(values[i]);
         for (int p = 0; p < passes; ++p)
             ++histogram[(size_t(p) << digit_bits) + ((key >> (digit_bits * p)) & digit_mask)];
-        items[i] = uint64_t(key) << 32 | i;
     }
+    // the passes that move anything: those where not every key has key0's digit
     const uint32_t key0 = order_key(values[0]);
-    int last = -1;  // the last pass that moves anything writes the ids to `out`
+    bool moves[passes] = {};
+    int first = -1, last = -1;
     for (int p = 0; p < passes; ++p) {
         const uint32_t* count = histogram.get() + (size_t(p) << digit_bits);
-        if (count[(key0 >> (digit_bits * p)) & digit_mask] != n) last = p;
+        moves[p] = count[(key0 >> (digit_bits * p)) & digit_mask] != n;
+        if (moves[p] && first < 0) first = p;
+        if (moves[p]) last = p;
     }
     if (last < 0) {  // all keys equal: id order
         for (size_t i = 0; i < n; ++i) out[i] = static_cast<uint32_t>(i);
         return;
     }
-    for (int p = 0; p <= last; ++p) {
+    for (int p = first; p <= last; ++p) {
+        if (!moves[p]) continue;
         uint32_t* offset = histogram.get() + (size_t(p) << digit_bits);
-        const uint32_t shift = 32 + digit_bits * static_cast<uint32_t>(p);
-        if (offset[(items[0] >> shift) & digit_mask] == n) continue;  // one digit: no-op pass
         uint32_t sum = 0;
         for (uint32_t d = 0; d <= digit_mask; ++d) {
             const uint32_t c = offset[d];
             offset[d] = sum;
             sum += c;
         }
-        const uint64_t* in = items;
-        if (p == last) {
+        const uint32_t shift = digit_bits * static_cast<uint32_t>(p);
+        if (p == first) {
+            // from the values: keys recomputed (cheaper than an array of items written and read)
+            for (size_t i = 0; i < n; ++i) {
+                const uint32_t key = order_key(values[i]);
+                const uint32_t d = (key >> shift) & digit_mask;
+                if (p == last)
+                    out[offset[d]++] = static_cast<uint32_t>(i);
+                else
+                    scratch[offset[d]++] = uint64_t(key) << 32 | i;
+            }
+        } else if (p == last) {
             for (size_t i = 0; i < n; ++i)
-                out[offset[(in[i] >> shift) & digit_mask]++] = static_cast<uint32_t>(in[i]);
-            return;
+                out[offset[(items[i] >> (32 + shift)) & digit_mask]++] =
+                    static_cast<uint32_t>(items[i]);
+        } else {
+            for (size_t i = 0; i < n; ++i)
+                scratch[offset[(items[i] >> (32 + shift)) & digit_mask]++] = items[i];
         }
-        for (size_t i = 0; i < n; ++i) scratch[offset[(in[i] >> shift) & digit_mask]++] = in[i];
         std::swap(items, scratch);
     }
 }
