@@ -22,6 +22,7 @@ struct BlockBounds {
     vec3 org_lo{infinity}, org_hi{-infinity};
     vec3 inv_lo{infinity}, inv_hi{-infinity};
     float t_min = infinity;                  ///< smallest t_min of the active lanes
+    float t_max = infinity;                  ///< at least every active lane's t_max or limit
     bool usable[3] = {false, false, false};  ///< reciprocals finite and of one sign on this axis
     int dir_neg[3] = {0, 0, 0};              ///< the block's direction signs, for near-first order
     /// The same bounds for block_may_hit, mirrored (coordinates negated on axes of negative
@@ -96,13 +97,14 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
     return b;
 }
 
-/// False only when no ray of the block can touch the box at t >= the block's smallest t_min:
+/// False only when no ray of the block can touch the box at t in [the block's smallest t_min,
+/// its t_max] (a closest-hit block lowers t_max to its largest limit as hits are found):
 /// interval arithmetic over the origins and reciprocals, with a relative margin far above float
 /// rounding. In the mirrored space every reciprocal is positive, so the smallest entry distance
 /// is (lo - largest origin) times the smallest or largest reciprocal by its sign, and the largest
 /// exit distance likewise: the products of the four-corner bound that win, branch-free.
 bool block_may_hit(const BlockBounds& b, const BvhNode& node) {
-    float t0 = b.t_min, t1 = infinity;
+    float t0 = b.t_min, t1 = b.t_max;
     for (int k = 0; k < 3; ++k) {
         const float lo = b.neg[k] ? -node.hi[k] : node.lo[k];
         const float hi = b.neg[k] ? -node.lo[k] : node.hi[k];
@@ -232,7 +234,7 @@ template <int W>
 void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
                              const vmask<W>* active, HitPacket<W>* hits, int count) {
     for (int p = 0; p < count; ++p) hits[p] = HitPacket<W>{};
-    const BlockBounds bounds = make_block_bounds(rays, active, count);
+    BlockBounds bounds = make_block_bounds(rays, active, count);
     for (uint32_t object : accel.unbounded) {
         if (!block_may_hit_unbounded(scene, bounds, scene.objects[object])) continue;
         for (int p = 0; p < count; ++p)
@@ -247,6 +249,15 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
         sr[p] = make_slab_ray(rays[p]);
         limit[p] = t_limit(rays[p], hits[p]);
     }
+    // the block's bound on t: the largest limit of its active lanes, which only shrinks; nodes
+    // beyond it hold no better hit for any lane, and block_may_hit culls them with one test
+    // instead of one per packet (most of a covered tile's nodes behind its first hits)
+    auto lower_t_max = [&] {
+        vfloat<W> far(-infinity);
+        for (int p = 0; p < count; ++p) far = select(active[p], max(limit[p], far), far);
+        bounds.t_max = std::min(bounds.t_max, hmax(far));
+    };
+    lower_t_max();
     auto test = [&](int p, const BvhNode& node) {
         vfloat<W> t_near;
         return intersect_slab(sr[p], vec3(node.lo[0], node.lo[1], node.lo[2]),
@@ -255,6 +266,7 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
     };
     WatertightPacket<W> wr[max_block_rays / W];
     bool wr_ready[max_block_rays / W] = {};
+    bool found = false;
     traverse_block<W>(accel.top, bounds, count, test, [&](const BvhNode& top_leaf, int f, int l) {
         for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
             const uint32_t object_index = accel.top.prim_ids[k];
@@ -294,9 +306,12 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
                                 record(hits[p], better(t, object_index, prim, hits[p], h), t,
                                        object_index, prim, u, v);
                                 limit[p] = t_limit(rays[p], hits[p]);
+                                found = true;
                             }
                         }
                     }
+                    if (found) lower_t_max();
+                    found = false;
                 });
         }
     });
