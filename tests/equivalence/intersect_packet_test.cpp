@@ -546,6 +546,45 @@ TYPED_TEST(IntersectPacket, StreamsMatchScalarOnAwkwardRaysThroughMeshes) {
     intersect_any_stream(l.scene, l.accel, p.data(), active.get(), occluded.get(), 0);
 }
 
+/// A closest-hit block culls a node that its first packet misses when the node lies beyond the
+/// largest limit of the block's lanes (intersect_closest_block lowers the block's t bound as hits
+/// are found). Parallel rays along +z from a 16x16 grid (rows of y < 0, then y > 0) meet a
+/// triangle at z = 10 that covers them all, and the rows of y > 0 a triangle at z = 9.995 first.
+/// The median split puts the far triangle in the first child (lower x), which the rays visit
+/// first (direction x > 0); when the near triangle's leaf comes, the first packet (y < 0) misses
+/// it and only the block's bound, 10, keeps it: a bound even 0.1% too small (9.99) culls it, and
+/// the rows of y > 0 would report 10.
+TYPED_TEST(IntersectPacket, BlocksCullOnlyNodesBeyondEveryLanesLimit) {
+    constexpr int W = TypeParam::value;
+    Loaded l;
+    l.scene.materials.resize(1);
+    Mesh two;
+    two.positions = {{-3.0f, -3.0f, 10.0f}, {2.0f, -3.0f, 10.0f}, {-0.5f, 6.0f, 10.0f},
+                     {-0.5f, 0.0f, 9.995f}, {2.5f, 0.0f, 9.995f}, {1.0f, 3.0f, 9.995f}};
+    two.tris = {uvec3(0, 1, 2), uvec3(3, 4, 5)};
+    l.scene.meshes.push_back(two);
+    Object o;
+    o.kind = ShapeKind::mesh;
+    l.scene.objects.push_back(o);
+    l.accel = build_accel(l.scene, BuildParams{1});
+    ASSERT_EQ(l.accel.meshes[0].bvh.nodes.size(), 3u);
+    ASSERT_EQ(l.accel.meshes[0].bvh.nodes[0].axis, 0);
+    std::vector<Ray> rays;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            rays.push_back({vec3(-0.1f + 0.0125f * (float(x) + 0.5f),
+                                 -0.1f + 0.0125f * (float(y) + 0.5f), 0.0f),
+                            vec3(0.001f, 0.0f, 1.0f), 0.0f, infinity});
+    const ScalarAnswers want = scalar_answers(l, rays);
+    size_t near = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        ASSERT_TRUE(want.closest[i].hit());
+        near += want.closest[i].prim == 1;
+    }
+    EXPECT_EQ(near, rays.size() / 2) << "the rows of y > 0 hit the near triangle";
+    EXPECT_EQ(closest_block_mismatches<W>(l, rays, want.closest), 0u);
+}
+
 /// The camera's rays reversed, searching behind their origin (t in (-1e4, 0)): block culling
 /// must not assume t >= 0.
 TYPED_TEST(IntersectPacket, BlocksHandleNegativeIntervals) {
