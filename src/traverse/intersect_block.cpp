@@ -22,7 +22,7 @@ struct BlockBounds {
     vec3 org_lo{infinity}, org_hi{-infinity};
     vec3 inv_lo{infinity}, inv_hi{-infinity};
     float t_min = infinity;                  ///< smallest t_min of the active lanes
-    float t_max = infinity;                  ///< at least every active lane's t_max or limit
+    float t_max = infinity;                  ///< no lane has a better hit beyond it
     bool usable[3] = {false, false, false};  ///< reciprocals finite and of one sign on this axis
     int dir_neg[3] = {0, 0, 0};              ///< the block's direction signs, for near-first order
     /// The same bounds for block_may_hit, mirrored (coordinates negated on axes of negative
@@ -249,9 +249,13 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
         sr[p] = make_slab_ray(rays[p]);
         limit[p] = t_limit(rays[p], hits[p]);
     }
-    // the block's bound on t: the largest limit of its active lanes, which only shrinks; nodes
-    // beyond it hold no better hit for any lane, and block_may_hit culls them with one test
-    // instead of one per packet (most of a covered tile's nodes behind its first hits)
+    // the block's bound on t: the smallest of the largest limits of its active lanes seen so
+    // far. A better hit lies below a lane's current limit and below each limit it had before
+    // (it is nearer than the hit that set the limit; a hit at negative t raises the limit,
+    // |t| + 4 ulps, but not the better hits' t), so nodes beyond the bound hold none, and
+    // block_may_hit culls them with one test instead of one per packet (most of a covered
+    // tile's nodes behind its first hits). Hits of analytic objects in top-level leaves do not
+    // lower it: a looser bound, still a bound.
     auto lower_t_max = [&] {
         vfloat<W> far(-infinity);
         for (int p = 0; p < count; ++p) far = select(active[p], max(limit[p], far), far);

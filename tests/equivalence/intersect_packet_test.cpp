@@ -548,27 +548,32 @@ TYPED_TEST(IntersectPacket, StreamsMatchScalarOnAwkwardRaysThroughMeshes) {
 
 /// A closest-hit block culls a node that its first packet misses when the node lies beyond the
 /// largest limit of the block's lanes (intersect_closest_block lowers the block's t bound as hits
-/// are found). Parallel rays along +z from a 16x16 grid (rows of y < 0, then y > 0) meet a
-/// triangle at z = 10 that covers them all, and the rows of y > 0 a triangle at z = 9.995 first.
-/// The median split puts the far triangle in the first child (lower x), which the rays visit
-/// first (direction x > 0); when the near triangle's leaf comes, the first packet (y < 0) misses
-/// it and only the block's bound, 10, keeps it: a bound even 0.1% too small (9.99) culls it, and
-/// the rows of y > 0 would report 10.
+/// are found). Parallel rays along (0.001, 0, 1) from a 16x16 grid: row 0 meets a triangle at
+/// z = 5, rows 1 to 7 (y < 0) a triangle at z = 10, rows 8 to 15 (y > 0) a triangle at z = 9.995
+/// before the one at 10. With leaves of one triangle the tree visits z = 5, then z = 10 (the
+/// lower x, and the rays go to +x), then z = 9.995; there the range's first packet (row 1, or
+/// its first W rays) misses the box and only the block's bound, the largest limit 10, keeps the
+/// leaf: a bound 0.1 % too small (9.99), or the smallest limit (5) instead of the largest, culls
+/// it and rows 8 to 15 would report z = 10.
 TYPED_TEST(IntersectPacket, BlocksCullOnlyNodesBeyondEveryLanesLimit) {
     constexpr int W = TypeParam::value;
     Loaded l;
     l.scene.materials.resize(1);
-    Mesh two;
-    two.positions = {{-3.0f, -3.0f, 10.0f}, {2.0f, -3.0f, 10.0f}, {-0.5f, 6.0f, 10.0f},
-                     {-0.5f, 0.0f, 9.995f}, {2.5f, 0.0f, 9.995f}, {1.0f, 3.0f, 9.995f}};
-    two.tris = {uvec3(0, 1, 2), uvec3(3, 4, 5)};
-    l.scene.meshes.push_back(two);
+    Mesh three;
+    three.positions = {{-3.0f, -3.0f, 10.0f},   {2.0f, -3.0f, 10.0f},   {-0.5f, 6.0f, 10.0f},
+                       {-0.5f, 0.0f, 9.995f},   {2.5f, 0.0f, 9.995f},   {1.0f, 3.0f, 9.995f},
+                       {-1.0f, -0.0875f, 5.0f}, {1.0f, -0.0875f, 5.0f}, {0.0f, -1.0f, 5.0f}};
+    three.tris = {uvec3(0, 1, 2), uvec3(3, 4, 5), uvec3(6, 7, 8)};
+    l.scene.meshes.push_back(three);
     Object o;
     o.kind = ShapeKind::mesh;
     l.scene.objects.push_back(o);
     l.accel = build_accel(l.scene, BuildParams{1});
-    ASSERT_EQ(l.accel.meshes[0].bvh.nodes.size(), 3u);
-    ASSERT_EQ(l.accel.meshes[0].bvh.nodes[0].axis, 0);
+    // the leaves in visiting order: z = 5 (split on z), then z = 10 before z = 9.995 (split on x)
+    const Bvh& bvh = l.accel.meshes[0].bvh;
+    ASSERT_EQ(std::vector<uint32_t>(bvh.prim_ids.begin(), bvh.prim_ids.end()),
+              (std::vector<uint32_t>{2, 0, 1}));
+    ASSERT_EQ(bvh.nodes[0].axis, 2);
     std::vector<Ray> rays;
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 16; ++x)
@@ -576,12 +581,14 @@ TYPED_TEST(IntersectPacket, BlocksCullOnlyNodesBeyondEveryLanesLimit) {
                                  -0.1f + 0.0125f * (float(y) + 0.5f), 0.0f),
                             vec3(0.001f, 0.0f, 1.0f), 0.0f, infinity});
     const ScalarAnswers want = scalar_answers(l, rays);
-    size_t near = 0;
+    size_t hits_of[3] = {0, 0, 0};
     for (size_t i = 0; i < rays.size(); ++i) {
         ASSERT_TRUE(want.closest[i].hit());
-        near += want.closest[i].prim == 1;
+        ++hits_of[want.closest[i].prim];
     }
-    EXPECT_EQ(near, rays.size() / 2) << "the rows of y > 0 hit the near triangle";
+    EXPECT_EQ(hits_of[2], 16u) << "row 0 hits the triangle at z = 5";
+    EXPECT_EQ(hits_of[0], 7u * 16u) << "rows 1 to 7 hit the triangle at z = 10";
+    EXPECT_EQ(hits_of[1], 8u * 16u) << "rows 8 to 15 hit the triangle at z = 9.995";
     EXPECT_EQ(closest_block_mismatches<W>(l, rays, want.closest), 0u);
 }
 
