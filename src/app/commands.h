@@ -18,6 +18,10 @@ void add_report_command(CLI::App& app, int& exit_code);
 /// Adds --bvh to a command: median (the report's build, the default) or sah (binned SAH, a
 /// comparison option).
 void add_bvh_option(CLI::App* cmd, std::string& bvh);
+/// Checks that an option's value is a finite number >= 0 (CLI::Range lets NaN through and
+/// prints its bounds in full).
+CLI::Validator finite_non_negative();
+
 /// The build parameters a --bvh value names.
 BuildParams build_params(const std::string& bvh);
 

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include "app/commands.h"
 #include "io/load_scene.h"
@@ -13,6 +15,18 @@ void add_bvh_option(CLI::App* cmd, std::string& bvh) {
                     "BVH build: median (the report's median split, default) or sah (binned SAH, "
                     "for comparison)")
         ->check(CLI::IsMember({"median", "sah"}));
+}
+
+CLI::Validator finite_non_negative() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (text.empty() || end != text.c_str() + text.size()) return "not a number: " + text;
+            if (!std::isfinite(v) || v < 0.0) return "must be a finite number >= 0, not " + text;
+            return {};
+        },
+        "NUMBER >= 0", "finite_non_negative");
 }
 
 BuildParams build_params(const std::string& bvh) {

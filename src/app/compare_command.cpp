@@ -77,9 +77,9 @@ void add_compare_command(CLI::App& app, int& exit_code) {
     add_bvh_option(cmd, o->bvh);
     cmd->add_option("--tolerance", o->tolerance,
                     "largest allowed per-channel difference (linear; default 2e-3)")
-        ->check(CLI::Range(0.0, 1e30));
-    cmd->add_option("--id-allowance", o->id_allowance,
-                    "primary hits allowed to differ (default 0)");
+        ->check(finite_non_negative());
+    cmd->add_option("--id-allowance", o->id_allowance, "primary hits allowed to differ (default 0)")
+        ->check(finite_non_negative());
     cmd->callback([o, &exit_code] { exit_code = run_compare(*o); });
 }
 

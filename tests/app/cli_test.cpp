@@ -37,7 +37,9 @@ TEST(Cli, HelpWorksForEveryCommand) {
 TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
     for (const char* args :
          {"render --spp 0", "render --aov shiny", "render --path fast", "frobnicate",
-          "render /no/such/scene.json", "render --width -3", "render --bvh octree", "info --bvh"}) {
+          "render /no/such/scene.json", "render --width -3", "render --bvh octree", "info --bvh",
+          "compare --tolerance nan", "compare --tolerance -1", "compare --tolerance inf",
+          "compare --tolerance 1e-3x", "compare --id-allowance -1"}) {
         const CliRun r = run(args);
         EXPECT_EQ(r.code, 2) << args;
         EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
