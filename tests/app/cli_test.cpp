@@ -130,6 +130,21 @@ TEST(Cli, StrictRenderFailsOnInfiniteSamplesButWritesACleanImage) {
     EXPECT_EQ(run("render --width 32 -q --strict -o " + pfm).code, 0);
 }
 
+/// Waits up to 30 s for process `pid` to catch signal `sig` (bit sig - 1 of SigCgt in
+/// /proc/PID/status); false if it never does.
+bool catches_signal(pid_t pid, int sig) {
+    const std::string status = "/proc/" + std::to_string(pid) + "/status";
+    for (int tries = 0; tries < 3000; ++tries) {
+        std::ifstream f(status);
+        for (std::string line; std::getline(f, line);)
+            if (line.rfind("SigCgt:", 0) == 0 &&
+                (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1) & 1u) != 0)
+                return true;
+        usleep(10 * 1000);
+    }
+    return false;
+}
+
 TEST(Cli, InterruptedRenderWritesNothingAndLeavesTheOldImage) {
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("raylane_cli_int_" + std::to_string(getpid()));
@@ -144,7 +159,10 @@ TEST(Cli, InterruptedRenderWritesNothingAndLeavesTheOldImage) {
                   "-q", "-o", png.c_str(), static_cast<char*>(nullptr));
             _exit(127);
         }
-        usleep(700 * 1000);  // into the render (loading the built-in scene takes milliseconds)
+        // into the render: once the child catches the signal (its handlers are installed at
+        // the start of main, which a loaded machine may reach late), and a little more
+        ASSERT_TRUE(catches_signal(pid, sig)) << "the render never installed its handler";
+        usleep(300 * 1000);
         kill(pid, sig);
         int status = 0;
         ASSERT_EQ(waitpid(pid, &status, 0), pid);
