@@ -160,7 +160,10 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
         << "); repeated builds growing no faster than n log n at each 4x step up to 1.6M: "
         << (steps < 2 ? "—" : (steps_within == steps ? "met" : "not met"))
         << ". First builds are one per process only when each size runs alone "
-           "(--benchmark_filter=BM_BuildMedianFirst/dragon_1600k).\n";
+           "(--benchmark_filter=BM_BuildMedianFirst/dragon_1600k). The sizes run one after the "
+           "other, so a slow minute moves one step's growth; "
+           "--benchmark_enable_random_interleaving=true with more repetitions spreads it over "
+           "all three.\n";
 }
 
 }  // namespace
