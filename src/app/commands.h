@@ -21,6 +21,10 @@ void add_bvh_option(CLI::App* cmd, std::string& bvh);
 /// Checks that an option's value is a finite number >= 0 (CLI::Range lets NaN through and
 /// prints its bounds in full).
 CLI::Validator finite_non_negative();
+/// Checks that an option's value is a whole number >= 0 in decimal digits that fits 64 bits, and
+/// passes it on without leading zeros (CLI11 itself reads "010" as octal and clamps larger
+/// values).
+CLI::Validator whole_number();
 
 /// The build parameters a --bvh value names.
 BuildParams build_params(const std::string& bvh);

@@ -1,5 +1,6 @@
 // app: helpers the commands share.
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -22,11 +23,26 @@ CLI::Validator finite_non_negative() {
         [](std::string& text) -> std::string {
             char* end = nullptr;
             const double v = std::strtod(text.c_str(), &end);
-            if (text.empty() || end != text.c_str() + text.size()) return "not a number: " + text;
+            if (text.empty() || end != text.c_str() + text.size())
+                return "not a number: '" + text + "'";
             if (!std::isfinite(v) || v < 0.0) return "must be a finite number >= 0, not " + text;
             return {};
         },
         "NUMBER >= 0", "finite_non_negative");
+}
+
+CLI::Validator whole_number() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+                return "must be a whole number >= 0 (decimal digits), not '" + text + "'";
+            errno = 0;
+            const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+            if (errno == ERANGE) return "too large: " + text;
+            text = std::to_string(v);  // no leading zeros: CLI11 would read "010" as octal
+            return {};
+        },
+        "INTEGER >= 0", "whole_number");
 }
 
 BuildParams build_params(const std::string& bvh) {

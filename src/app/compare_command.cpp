@@ -79,7 +79,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
                     "largest allowed per-channel difference (linear; default 2e-3)")
         ->check(finite_non_negative());
     cmd->add_option("--id-allowance", o->id_allowance, "primary hits allowed to differ (default 0)")
-        ->check(finite_non_negative());
+        ->transform(whole_number());
     cmd->callback([o, &exit_code] { exit_code = run_compare(*o); });
 }
 

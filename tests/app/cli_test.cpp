@@ -39,7 +39,8 @@ TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
          {"render --spp 0", "render --aov shiny", "render --path fast", "frobnicate",
           "render /no/such/scene.json", "render --width -3", "render --bvh octree", "info --bvh",
           "compare --tolerance nan", "compare --tolerance -1", "compare --tolerance inf",
-          "compare --tolerance 1e-3x", "compare --id-allowance -1"}) {
+          "compare --tolerance 1e-3x", "compare --id-allowance -1", "compare --id-allowance 1.5",
+          "compare --id-allowance 010x", "compare --id-allowance 99999999999999999999"}) {
         const CliRun r = run(args);
         EXPECT_EQ(r.code, 2) << args;
         EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
@@ -130,16 +131,22 @@ TEST(Cli, StrictRenderFailsOnInfiniteSamplesButWritesACleanImage) {
     EXPECT_EQ(run("render --width 32 -q --strict -o " + pfm).code, 0);
 }
 
-/// Waits up to 30 s for process `pid` to catch signal `sig` (bit sig - 1 of SigCgt in
-/// /proc/PID/status); false if it never does.
+/// Waits up to 30 s for the raylane process `pid` (the name in /proc/PID/status: not the forked
+/// test before its exec) to catch signal `sig` (bit sig - 1 of SigCgt there); false if it never
+/// does or exits first (a zombie).
 bool catches_signal(pid_t pid, int sig) {
     const std::string status = "/proc/" + std::to_string(pid) + "/status";
     for (int tries = 0; tries < 3000; ++tries) {
         std::ifstream f(status);
-        for (std::string line; std::getline(f, line);)
-            if (line.rfind("SigCgt:", 0) == 0 &&
-                (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1) & 1u) != 0)
-                return true;
+        bool raylane = false, catches = false, zombie = false;
+        for (std::string line; std::getline(f, line);) {
+            if (line.rfind("Name:", 0) == 0) raylane = line.find("raylane") != std::string::npos;
+            if (line.rfind("State:", 0) == 0) zombie = line.find('Z') != std::string::npos;
+            if (line.rfind("SigCgt:", 0) == 0)
+                catches = (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1) & 1u) != 0;
+        }
+        if (zombie) return false;
+        if (raylane && catches) return true;
         usleep(10 * 1000);
     }
     return false;
@@ -161,8 +168,13 @@ TEST(Cli, InterruptedRenderWritesNothingAndLeavesTheOldImage) {
         }
         // into the render: once the child catches the signal (its handlers are installed at
         // the start of main, which a loaded machine may reach late), and a little more
-        ASSERT_TRUE(catches_signal(pid, sig)) << "the render never installed its handler";
-        usleep(300 * 1000);
+        if (!catches_signal(pid, sig)) {
+            kill(pid, SIGKILL);  // nothing left running or writing
+            int status = 0;
+            waitpid(pid, &status, 0);
+            FAIL() << "the render exited or never installed its handler, status " << status;
+        }
+        usleep(300 * 1000);  // most likely mid-render; any time after the handler stops it
         kill(pid, sig);
         int status = 0;
         ASSERT_EQ(waitpid(pid, &status, 0), pid);
@@ -190,6 +202,13 @@ TEST(Cli, CompareAgreesOnTheBuiltinScene) {
     EXPECT_EQ(r.code, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("agree"), std::string::npos);
     EXPECT_NE(r.out.find("PSNR"), std::string::npos);
+}
+
+TEST(Cli, CompareReadsItsAllowanceInDecimal) {
+    // CLI11 alone reads "010" as octal 8
+    const CliRun r = run("compare --width 16 --id-allowance 010 --tolerance 0.5");
+    EXPECT_EQ(r.code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("tolerance 0.5, id allowance 10)"), std::string::npos) << r.out;
 }
 
 TEST(Cli, SahBuildIsAnOptionOfInfoRenderAndCompare) {
