@@ -23,7 +23,7 @@ void add_bvh_option(CLI::App* cmd, std::string& bvh);
 CLI::Validator finite_non_negative();
 /// Checks that an option's value is a whole number >= 0 in decimal digits that fits 64 bits, and
 /// passes it on without leading zeros (CLI11 itself reads "010" as octal and clamps larger
-/// values).
+/// values). Use it with transform(): check() would pass on the original text.
 CLI::Validator whole_number();
 
 /// The build parameters a --bvh value names.
