@@ -25,6 +25,9 @@ CLI::Validator finite_non_negative();
 /// passes it on without leading zeros (CLI11 itself reads "010" as octal and clamps larger
 /// values). Use it with transform(): check() would pass on the original text.
 CLI::Validator whole_number();
+/// Checks, before any work, that an image path can be written: a .png or .pfm extension (any
+/// case), not a directory, in a directory that exists.
+CLI::Validator image_output();
 
 /// The build parameters a --bvh value names.
 BuildParams build_params(const std::string& bvh);

@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "app/commands.h"
+#include "image/film.h"
 #include "io/load_scene.h"
 
 namespace raylane {
@@ -43,6 +45,21 @@ CLI::Validator whole_number() {
             return {};
         },
         "INTEGER >= 0", "whole_number");
+}
+
+CLI::Validator image_output() {
+    return CLI::Validator(
+        [](std::string& path) -> std::string {
+            if (image_format(path) == ImageFormat::none)
+                return path + ": unknown image extension (use .png or .pfm)";
+            std::error_code ec;
+            if (std::filesystem::is_directory(path, ec)) return path + ": is a directory";
+            const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+            if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
+                return path + ": no such directory: " + dir.string();
+            return {};
+        },
+        "FILE.png|FILE.pfm", "image_output");
 }
 
 BuildParams build_params(const std::string& bvh) {

@@ -109,7 +109,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene (the built-in scene without one)");
     cmd->add_option("scene", o->scene_path, "scene JSON file")->check(CLI::ExistingFile);
-    cmd->add_option("-o,--output", o->output, "image to write (.png or .pfm; default SCENE.png)");
+    cmd->add_option("-o,--output", o->output, "image to write (.png or .pfm; default SCENE.png)")
+        ->check(image_output());
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
         ->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--threads", o->threads, "worker threads (default: all)")

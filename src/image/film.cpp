@@ -182,16 +182,25 @@ void write_pfm(const std::string& path, const Film& film) {
     });
 }
 
-void write_image(const std::string& path, const Film& film, Encoding encoding) {
+ImageFormat image_format(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext == ".pfm")
-        write_pfm(path, film);
-    else if (ext == ".png")
-        write_png(path, film, encoding);
-    else
-        throw std::runtime_error(path + ": unknown image extension (use .png or .pfm)");
+    return ext == ".png" ? ImageFormat::png : ext == ".pfm" ? ImageFormat::pfm : ImageFormat::none;
+}
+
+void write_image(const std::string& path, const Film& film, Encoding encoding) {
+    switch (image_format(path)) {
+        case ImageFormat::pfm:
+            write_pfm(path, film);
+            return;
+        case ImageFormat::png:
+            write_png(path, film, encoding);
+            return;
+        case ImageFormat::none:
+            break;
+    }
+    throw std::runtime_error(path + ": unknown image extension (use .png or .pfm)");
 }
 
 vec3 false_colour(float x) {

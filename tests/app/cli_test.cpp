@@ -40,11 +40,19 @@ TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
           "render /no/such/scene.json", "render --width -3", "render --bvh octree", "info --bvh",
           "compare --tolerance nan", "compare --tolerance -1", "compare --tolerance inf",
           "compare --tolerance 1e-3x", "compare --id-allowance -1", "compare --id-allowance 1.5",
-          "compare --id-allowance 010x", "compare --id-allowance 99999999999999999999"}) {
+          "compare --id-allowance 010x", "compare --id-allowance 99999999999999999999",
+          "render -o image.jpg", "render -o /no/such/dir/image.png", "render -o /"}) {
         const CliRun r = run(args);
         EXPECT_EQ(r.code, 2) << args;
         EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
     }
+    // an output path that is a directory is refused before the render, not after it
+    const auto dir = std::filesystem::temp_directory_path() / "raylane_cli_dir.png";
+    std::filesystem::create_directories(dir);
+    const CliRun r = run("render -o " + dir.string());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
 }
 
 TEST(Cli, MalformedSceneNamesFileAndPath) {
@@ -52,7 +60,7 @@ TEST(Cli, MalformedSceneNamesFileAndPath) {
         "raylane_bad_scene.json",
         R"({"camera": {"position": [0,0,0], "look_at": [0,0,1], "fov_deg": 60, "resolution": [8,8]},
             "objects": [{"shape": "sphere", "center": [0,0,3], "radius": 1, "material": "gold"}]})");
-    const CliRun r = run("render " + scene + " -o /dev/null");
+    const CliRun r = run("render " + scene + " -o " + temp_file("raylane_bad_scene.png", ""));
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find("raylane_bad_scene.json"), std::string::npos) << r.err;
