@@ -15,8 +15,8 @@
 # W = 1, the scalar width, does not depend on the instruction set and the release build tests
 # it). These builds check answers, not speed: -O1 takes the same code paths as -O3 (no
 # fast-math, no contraction either way). With these choices, and no raylane binary to build,
-# this step took 317–379 s in fresh-clone CI runs instead of 601 s (2026-12-03), and 220–242 s
-# with the test programs built as unity builds (batches of 8; the whole of .ci/run: 805–935 s).
+# this step took 317–379 s in fresh-clone CI runs instead of 601 s (2026-12-03), and less again
+# with the test programs built as unity builds (batches of 8); README.md has the current times.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
