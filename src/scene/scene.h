@@ -178,6 +178,13 @@ enum class Tonemap : uint8_t { srgb, report };
 /// Deepest recursion a scene may ask for (reflection or refraction).
 inline constexpr int max_path_depth = 64;
 
+/// Glass interactions after which a path stops forking: where both a reflected and a refracted
+/// ray would be traced, only the larger of the two (by Fresnel weight; the reflection on a tie)
+/// goes on. Nested glass otherwise doubles the rays of a sample at every interaction (2^64 at
+/// max_refraction_depth 64); this keeps a sample's tree at most 2^glass_fork_depth paths wide,
+/// and a path longer than it is linear. Scenes within the depth limit's default never reach it.
+inline constexpr int glass_fork_depth = 10;
+
 /// Scene-wide shading switches, including the report's analysis images (Figures 4 and 6).
 struct ShadingOptions {
     BrdfScaling brdf = BrdfScaling::physical;

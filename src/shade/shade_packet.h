@@ -134,29 +134,34 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
             const Vec3<W> org_in = offset_ray_origin(sp.position, -ng, reach);
             const vec3 no_filter(1.0f);
             const vmask<W> reflects = mask_and(alive, r > zero);
-            if (o.override_reflected) {
+            // the rays this interaction may trace (a reflection below the geometric surface is
+            // discarded); past glass_fork_depth only the larger of two (scene.h)
+            vmask<W> traced = mask_and(reflects, dot(ng, reflected_dir) > zero);
+            vmask<W> transmits = mask_and(mask_and(alive, refracts), r < one);
+            if (!o.reflection || o.override_reflected) traced = mask_andnot(traced, traced);
+            if (!o.refraction) transmits = mask_andnot(transmits, transmits);
+            const vmask<W> no_fork =
+                mask_andnot(mask_and(traced, transmits), lt(refr_depth, vint<W>(glass_fork_depth)));
+            const vmask<W> reflection_larger = r >= vfloat<W>(0.5f);
+            traced = mask_andnot(traced, mask_andnot(no_fork, reflection_larger));
+            transmits = mask_andnot(transmits, mask_and(no_fork, reflection_larger));
+            if (o.override_reflected)
                 accumulate<W>(out, slot, (weight * r) * bc<W>(o.reflected_color), reflects);
-            } else if (o.reflection) {
-                // below the geometric surface: discarded
-                const vmask<W> traced = mask_and(reflects, dot(ng, reflected_dir) > zero);
-                if (any(traced)) {
-                    out.counts->reflection_rays += uint64_t(count(traced));
-                    const Vec3<W> filter = select(entering, bc<W>(no_filter), bc<W>(m.filter));
-                    const vint<W> child = child_keys<W>(key, purpose_reflect, 0);
-                    for (const bool inside : {false, true}) {
-                        // reflected inside where the ray came from inside
-                        const vmask<W> lanes =
-                            inside ? mask_andnot(traced, entering) : mask_and(traced, entering);
-                        if (any(lanes))
-                            push_packet<W>(inside ? *out.next_inside : *out.next, org_out,
-                                           reflected_dir, weight * r, filter, slot, child,
-                                           refl_depth, refr_depth + vint<W>(1), child_env,
-                                           vint<W>(0), lanes);
-                    }
+            if (any(traced)) {
+                out.counts->reflection_rays += uint64_t(count(traced));
+                const Vec3<W> filter = select(entering, bc<W>(no_filter), bc<W>(m.filter));
+                const vint<W> child = child_keys<W>(key, purpose_reflect, 0);
+                for (const bool inside : {false, true}) {
+                    // reflected inside where the ray came from inside
+                    const vmask<W> lanes =
+                        inside ? mask_andnot(traced, entering) : mask_and(traced, entering);
+                    if (any(lanes))
+                        push_packet<W>(inside ? *out.next_inside : *out.next, org_out,
+                                       reflected_dir, weight * r, filter, slot, child, refl_depth,
+                                       refr_depth + vint<W>(1), child_env, vint<W>(0), lanes);
                 }
             }
-            const vmask<W> transmits = mask_and(mask_and(alive, refracts), r < one);
-            if (o.refraction && any(transmits)) {
+            if (any(transmits)) {
                 out.counts->refraction_rays += uint64_t(count(transmits));
                 const Vec3<W> filter = select(entering, bc<W>(m.filter), bc<W>(no_filter));
                 const vint<W> child = child_keys<W>(key, purpose_refract, 0);

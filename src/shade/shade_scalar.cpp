@@ -161,21 +161,24 @@ vec3 glass_term(const Scene& scene, const Accel& accel, const Material& m, const
         const PathResult res = trace_path(scene, accel, child, index, params, counts);
         return inside ? res.radiance * beer_transmittance(m.filter, res.t) : res.radiance;
     };
-    vec3 color(0.0f);
-    if (r > 0.0f && (o.reflection || o.override_reflected)) {
-        vec3 reflected = o.reflected_color;
-        if (!o.override_reflected) {
-            const vec3 dir = reflect_direction(p.view, p.ns);
-            reflected = vec3(0.0f);  // below the geometric surface: discarded
-            if (glm::dot(p.ng, dir) > 0.0f) {
-                ++counts.reflection_rays;
-                // a reflection inside the glass travels inside
-                reflected = trace_child(p.ng, dir, purpose_reflect, !p.entering);
-            }
-        }
-        color += r * reflected;
+    const vec3 r_dir = reflect_direction(p.view, p.ns);
+    // the rays this interaction may trace (a reflection below the geometric surface is discarded)
+    bool reflect_ray =
+        r > 0.0f && o.reflection && !o.override_reflected && glm::dot(p.ng, r_dir) > 0.0f;
+    bool refract_ray = refracts && r < 1.0f && o.refraction;
+    if (reflect_ray && refract_ray && path.refraction_depth >= glass_fork_depth) {
+        // no more forks: the larger branch only (scene.h: glass_fork_depth)
+        reflect_ray = r >= 0.5f;
+        refract_ray = !reflect_ray;
     }
-    if (refracts && r < 1.0f && o.refraction) {
+    vec3 color(0.0f);
+    if (r > 0.0f && o.override_reflected) color += r * o.reflected_color;
+    if (reflect_ray) {
+        ++counts.reflection_rays;
+        // a reflection inside the glass travels inside
+        color += r * trace_child(p.ng, r_dir, purpose_reflect, !p.entering);
+    }
+    if (refract_ray) {
         ++counts.refraction_rays;
         color += (1.0f - r) * trace_child(-p.ng, t_dir, purpose_refract, p.entering);
     }

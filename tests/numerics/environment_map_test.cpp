@@ -267,8 +267,11 @@ double fresnel_exact(double ci, double eta) {
 /// Glass furnace: a clear sphere of index eta refracts and reflects with the same R at every
 /// one of its interactions (the internal angle equals the refracted one), the camera ray's
 /// interactions count 0, 1, ... and an interaction at depth >= D is black. So a pixel is
-/// R L + (1 - R) (1 - R^(D - 1)) L = L (1 - (1 - R) R^(D - 1)), R from the pixel-centre ray's
-/// incidence in double, within the effect of the ray offsets on the internal incidence.
+/// R L + (1 - R) (1 - R^(D - 1)) L = L (1 - (1 - R) R^(D - 1)) while D <= glass_fork_depth = F,
+/// R from the pixel-centre ray's incidence in double, within the effect of the ray offsets on the
+/// internal incidence. Deeper, interaction F goes on with its larger branch only (scene.h): the
+/// ray out when R < 1/2, which ends the series at L (1 - (1 - R) R^F); the reflection inside when
+/// R >= 1/2, which then never leaves (black at D): L (1 - (1 - R) R^(F - 1)).
 /// Silhouette pixels (cos_i < 0.05), where R's slope is large, are left out.
 void expect_glass_furnace(const Scene& s, const RenderResult& r, const std::string& path) {
     EXPECT_EQ(r.stats.bad_samples(), 0u) << path;
@@ -292,7 +295,8 @@ void expect_glass_furnace(const Scene& s, const RenderResult& r, const std::stri
             ++inside;
             auto value = [&](double c) {
                 const double rr = fresnel_exact(std::clamp(c, 0.0, 1.0), eta);
-                return l * (1 - (1 - rr) * std::pow(rr, depth - 1));
+                if (depth <= glass_fork_depth) return l * (1 - (1 - rr) * std::pow(rr, depth - 1));
+                return l * (1 - (1 - rr) * std::pow(rr, glass_fork_depth - (rr < 0.5 ? 0 : 1)));
             };
             const double want = value(ci);
             // each internal ray starts up to 256 ulps (3e-5 at unit scale, core/offset.h) inside

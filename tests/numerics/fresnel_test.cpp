@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/offset.h"
+#include "io/load_scene.h"
 #include "render/camera_rays.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
@@ -352,6 +353,66 @@ TYPED_TEST(FresnelGridPacket, SlabTransmitsTheInfiniteSeriesOfInternalReflection
     const Accel accel = build_accel(s, BuildParams{});
     expect_slab_series(s, render_packet_width<W>(s, accel, RenderParams{}),
                        "packet W=" + std::to_string(W));
+}
+
+// ---- nested glass: a sample's ray tree stays bounded (scene.h: glass_fork_depth) -------------
+
+/// A camera inside two nested glass boxes, looking at two concentric glass spheres: nearly every
+/// ray meets glass again, so without glass_fork_depth each interaction doubles the rays (this
+/// 2x2 image traced 551,120 glass rays at depth 28, and ran out of memory at depth 64).
+Scene nested_glass(int depth) {
+    return load_scene_from_string(
+        R"({"version": 1,
+            "camera": {"position": [0, 1, -5], "look_at": [0, 0.5, 0], "fov_deg": 60,
+                       "resolution": [2, 2], "spp": 1},
+            "materials": {"glass": {"refraction": {"ior": 1.5}}},
+            "objects": [
+              {"shape": "sphere", "center": [0, 0.5, 0], "radius": 1, "material": "glass"},
+              {"shape": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "glass"},
+              {"shape": "box", "min": [-10, -10, -10], "max": [10, 10, 10], "material": "glass"},
+              {"shape": "box", "min": [-11, -11, -11], "max": [11, 11, 11], "material": "glass"}],
+            "lights": [{"type": "point", "position": [-3, 5, -4], "intensity": 40}],
+            "shading": {"max_refraction_depth": )" +
+            std::to_string(depth) + "}}",
+        "nested_glass.json");
+}
+
+/// The most glass rays one camera sample can trace at a depth limit: a full binary tree while
+/// paths fork (2 + 4 + ... + 2^F rays), then 2^F paths of one ray per interaction.
+uint64_t glass_ray_bound(int depth) {
+    const int f = std::min(depth, glass_fork_depth);
+    return (uint64_t(2) << f) - 2 + (uint64_t(1) << f) * uint64_t(depth - f);
+}
+
+TEST(FresnelNested, GlassInGlassTracesABoundedTreeAtEveryDepthLimit) {
+    for (const int depth : {4, 28, 64}) {
+        const Scene s = nested_glass(depth);
+        const Accel accel = build_accel(s, BuildParams{});
+        const RenderResult r = render_scalar(s, accel, RenderParams{});
+        const uint64_t rays = r.stats.reflection_rays + r.stats.refraction_rays;
+        EXPECT_GT(rays, 4u * uint64_t(depth)) << depth;         // the glass is met again and again
+        ASSERT_LE(rays, 4u * glass_ray_bound(depth)) << depth;  // (the next depth: 2^64 rays)
+        EXPECT_EQ(r.stats.bad_samples(), 0u) << depth;
+    }
+}
+
+TYPED_TEST(FresnelGridPacket, NestedGlassTracesTheScalarTree) {
+    constexpr int W = TypeParam::value;
+    for (const int depth : {4, 28, 64}) {
+        const Scene s = nested_glass(depth);
+        const Accel accel = build_accel(s, BuildParams{});
+        const RenderResult scalar = render_scalar(s, accel, RenderParams{});
+        ASSERT_LE(scalar.stats.reflection_rays + scalar.stats.refraction_rays,
+                  4u * glass_ray_bound(depth));  // (the next depth: 2^64 rays)
+        const RenderResult packet = render_packet_width<W>(s, accel, RenderParams{});
+        ASSERT_EQ(packet.stats.reflection_rays, scalar.stats.reflection_rays) << depth;
+        ASSERT_EQ(packet.stats.refraction_rays, scalar.stats.refraction_rays) << depth;
+        for (size_t i = 0; i < scalar.film.pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(packet.film.pixels[i][c], scalar.film.pixels[i][c],
+                            1e-5f * scalar.film.pixels[i][c] + 1e-7f)
+                    << depth << " pixel " << i;
+    }
 }
 
 }  // namespace
