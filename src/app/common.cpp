@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "core/error.h"
 #include "image/film.h"
 #include "io/load_scene.h"
 
@@ -83,6 +84,12 @@ void apply_resolution(Camera& cam, int width, int height) {
         cam.width = std::max(1, int(std::lround(double(height) * cam.width / cam.height)));
         cam.height = height;
     }
+    // one side given keeps the scene's aspect ratio, which may take the other past the limits
+    if (cam.width > max_film_side || cam.height > max_film_side ||
+        int64_t(cam.width) * cam.height > max_film_pixels)
+        throw InputError("--width/--height: an image of " + std::to_string(cam.width) + "x" +
+                         std::to_string(cam.height) + " pixels is too large (at most " +
+                         std::to_string(max_film_side) + " a side and 2^28 pixels)");
 }
 
 double now_seconds() {

@@ -72,8 +72,8 @@ void add_compare_command(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--threads", o->threads, "worker threads (default: all)")
         ->check(CLI::Range(1, 1024));
-    cmd->add_option("--width", o->width, "image width")->check(CLI::Range(1, 32768));
-    cmd->add_option("--height", o->height, "image height")->check(CLI::Range(1, 32768));
+    cmd->add_option("--width", o->width, "image width")->check(CLI::Range(1, max_film_side));
+    cmd->add_option("--height", o->height, "image height")->check(CLI::Range(1, max_film_side));
     add_bvh_option(cmd, o->bvh);
     cmd->add_option("--tolerance", o->tolerance,
                     "largest allowed per-channel difference (linear; default 2e-3)")

@@ -116,9 +116,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--threads", o->threads, "worker threads (default: all)")
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--width", o->width, "image width (alone: keeps the aspect ratio)")
-        ->check(CLI::Range(1, 32768));
+        ->check(CLI::Range(1, max_film_side));
     cmd->add_option("--height", o->height, "image height (alone: keeps the aspect ratio)")
-        ->check(CLI::Range(1, 32768));
+        ->check(CLI::Range(1, max_film_side));
     cmd->add_option("--aov", o->aov, "output: color, normal, depth or bvh-cost")
         ->check(CLI::IsMember({"color", "normal", "depth", "bvh-cost"}));
     cmd->add_option("--seed", o->seed, "seed of the sample hash");

@@ -471,9 +471,9 @@ void add_report_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--threads", o->threads, "worker threads (default: all)")
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--width", o->width, "image width (alone: keeps the aspect ratio)")
-        ->check(CLI::Range(1, 32768));
+        ->check(CLI::Range(1, max_film_side));
     cmd->add_option("--height", o->height, "image height (alone: keeps the aspect ratio)")
-        ->check(CLI::Range(1, 32768));
+        ->check(CLI::Range(1, max_film_side));
     cmd->add_flag("--fresh-reference", o->fresh_reference,
                   "render the reference even when a cached one matches");
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");

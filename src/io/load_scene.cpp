@@ -146,8 +146,11 @@ class SceneReader : JsonReader {
         if (const Json* v = find(n, "resolution")) {
             Node res{v, member_path(n.path, "resolution")};
             expect(res, v->is_array() && v->size() == 2, "an array [width, height]");
-            c.width = integer(Node{&(*v)[0], element_path(res.path, 0)}, 1, 32768);
-            c.height = integer(Node{&(*v)[1], element_path(res.path, 1)}, 1, 32768);
+            c.width = integer(Node{&(*v)[0], element_path(res.path, 0)}, 1, max_film_side);
+            c.height = integer(Node{&(*v)[1], element_path(res.path, 1)}, 1, max_film_side);
+            if (int64_t(c.width) * c.height > max_film_pixels)
+                fail(res, "more than 2^28 pixels (" + std::to_string(c.width) + "x" +
+                              std::to_string(c.height) + ")");
         }
         if (const Json* v = find(n, "spp")) {
             c.spp = integer(Node{v, member_path(n.path, "spp")}, 1, 1 << 20);

@@ -175,6 +175,12 @@ enum class BrdfScaling : uint8_t { physical, report };
 /// (divide by the largest channel when it exceeds 1), no gamma (report-scenes.md 1.3).
 enum class Tonemap : uint8_t { srgb, report };
 
+/// The largest rendered image: each side at most max_film_side pixels, and at most
+/// max_film_pixels in all (a film of 3.2 GB; a PNG's rows stay under stb_image_write's 2^31-byte
+/// limit).
+inline constexpr int max_film_side = 32768;
+inline constexpr int64_t max_film_pixels = int64_t(1) << 28;
+
 /// Deepest recursion a scene may ask for (reflection or refraction).
 inline constexpr int max_path_depth = 64;
 

@@ -35,13 +35,27 @@ TEST(Cli, HelpWorksForEveryCommand) {
 }
 
 TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
-    for (const char* args :
-         {"render --spp 0", "render --aov shiny", "render --path fast", "frobnicate",
-          "render /no/such/scene.json", "render --width -3", "render --bvh octree", "info --bvh",
-          "compare --tolerance nan", "compare --tolerance -1", "compare --tolerance inf",
-          "compare --tolerance 1e-3x", "compare --id-allowance -1", "compare --id-allowance 1.5",
-          "compare --id-allowance 010x", "compare --id-allowance 99999999999999999999",
-          "render -o image.jpg", "render -o /no/such/dir/image.png", "render -o /"}) {
+    for (const char* args : {"render --spp 0",
+                             "render --aov shiny",
+                             "render --path fast",
+                             "frobnicate",
+                             "render /no/such/scene.json",
+                             "render --width -3",
+                             "render --bvh octree",
+                             "info --bvh",
+                             "compare --tolerance nan",
+                             "compare --tolerance -1",
+                             "compare --tolerance inf",
+                             "compare --tolerance 1e-3x",
+                             "compare --id-allowance -1",
+                             "compare --id-allowance 1.5",
+                             "compare --id-allowance 010x",
+                             "compare --id-allowance 99999999999999999999",
+                             "render -o image.jpg",
+                             "render -o /no/such/dir/image.png",
+                             "render -o /",
+                             "render --width 32768 --height 8193",
+                             "compare --width 32768"}) {
         const CliRun r = run(args);
         EXPECT_EQ(r.code, 2) << args;
         EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
