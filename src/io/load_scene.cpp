@@ -13,6 +13,7 @@
 #include <numbers>
 #include <string>
 #include <system_error>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -120,6 +121,16 @@ class SceneReader : JsonReader {
                                           ///< their last object takes them
     std::map<std::string, int> mesh_uses_;     ///< objects still to read, by resolved path
     std::map<std::string, int32_t> textures_;  ///< texture index by file and options
+    /// Material index by name, the first material of a name (objects name their material; a
+    /// search of the list made 100,000 objects of 100,000 materials quadratic).
+    std::unordered_map<std::string, uint32_t> material_ids_;
+
+    uint32_t add_material(Scene& scene, Material m) {
+        const uint32_t index = uint32_t(scene.materials.size());
+        material_ids_.emplace(m.name, index);
+        scene.materials.push_back(std::move(m));
+        return index;
+    }
 
     /// A world-space point, moved so that world_origin_ becomes Raylane's origin (in double,
     /// rounded to float once).
@@ -276,7 +287,7 @@ class SceneReader : JsonReader {
         for (auto it = n.j->begin(); it != n.j->end(); ++it) {
             Node m{&it.value(), member_path(n.path, it.key())};
             if (it.key().empty()) fail(m, "a material name must not be empty");
-            scene.materials.push_back(read_material(m, it.key(), scene));
+            add_material(scene, read_material(m, it.key(), scene));
         }
     }
 
@@ -501,7 +512,7 @@ class SceneReader : JsonReader {
     /// The visible stand-in of an area light (report-scenes.md 1.4): an object of emitted
     /// radiance colour * intensity / (4 pi A) that casts no shadows. A is the report's "2ab":
     /// twice the area of a rectangle or disc, 2ab for a box with a, b its two largest extents.
-    static void add_emitter(const Light& light, Scene& scene) {
+    void add_emitter(const Light& light, Scene& scene) {
         Material m;
         m.name = "<area light " + std::to_string(scene.lights.size()) + ">";
         Object o;
@@ -549,7 +560,7 @@ class SceneReader : JsonReader {
         }
         const double area = emitter_area(light);
         m.emission = light.color * float(double(light.intensity) / (4.0 * std::numbers::pi * area));
-        scene.materials.push_back(m);
+        add_material(scene, m);
     }
 
     Transform read_transform(const Node& n) const {
@@ -593,13 +604,11 @@ class SceneReader : JsonReader {
         return t;
     }
 
-    uint32_t material_index(const Node& object, Scene& scene) const {
+    uint32_t material_index(const Node& object, Scene& scene) {
         std::string name = "default";
         const Json* v = find(object, "material");
         if (v) name = text(Node{v, member_path(object.path, "material")});
-        for (size_t i = 0; i < scene.materials.size(); ++i) {
-            if (scene.materials[i].name == name) return uint32_t(i);
-        }
+        if (const auto it = material_ids_.find(name); it != material_ids_.end()) return it->second;
         if (v) {
             std::vector<std::string> known;
             for (const Material& m : scene.materials) known.push_back(m.name);
@@ -608,8 +617,7 @@ class SceneReader : JsonReader {
         }
         Material fallback;  // an object without "material" gets scene.h's defaults
         fallback.name = name;
-        scene.materials.push_back(fallback);
-        return uint32_t(scene.materials.size() - 1);
+        return add_material(scene, fallback);
     }
 
     /// The "fit" normalisation of a mesh with the given bounds (see transform.h, make_fit).
