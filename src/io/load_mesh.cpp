@@ -1,6 +1,10 @@
 // io: mesh reader dispatch by extension (load_mesh.h).
 #include "io/load_mesh.h"
 
+#include <filesystem>
+#include <string>
+#include <system_error>
+
 #include "core/error.h"
 #include "io/load_obj.h"
 #include "io/load_ply.h"
@@ -14,6 +18,12 @@ Mesh load_mesh(const std::string& path) {
     std::string extension = dot == std::string::npos ? std::string() : name.substr(dot);
     for (char& c : extension) {
         if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    }
+    std::error_code error;
+    const auto bytes = std::filesystem::file_size(path, error);  // (regular files only)
+    if (!error && bytes > static_cast<uintmax_t>(max_mesh_file_bytes)) {
+        throw InputError(path + ": file is " + std::to_string(bytes) +
+                         " bytes, over the limit of 2^31 for a mesh");
     }
     if (extension == ".obj") return load_obj(path);
     if (extension == ".ply") return load_ply(path);

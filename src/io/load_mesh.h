@@ -1,14 +1,19 @@
 // io: picks the mesh reader by file extension (load_obj.h, load_ply.h).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "scene/scene.h"
 
 namespace raylane {
 
+/// Largest mesh file read (bytes, 2 GiB): a bigger file is refused before it is mapped.
+inline constexpr int64_t max_mesh_file_bytes = int64_t{1} << 31;
+
 /// load_obj for ".obj", load_ply for ".ply" (extension compared case-insensitively).
-/// Any other extension throws InputError "path: unsupported mesh format ...".
+/// Any other extension throws InputError "path: unsupported mesh format ...", and so does a
+/// file over max_mesh_file_bytes.
 Mesh load_mesh(const std::string& path);
 
 }  // namespace raylane

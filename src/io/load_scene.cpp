@@ -226,7 +226,7 @@ class SceneReader : JsonReader {
         Node file_node = n.j->is_string() ? n : child(n, "file");
         std::string resolved;
         try {
-            resolved = find_model(file, dir_);
+            resolved = find_model(file, dir_, ModelKind::texture);
         } catch (const InputError& e) {
             fail(file_node, e.what());
         }

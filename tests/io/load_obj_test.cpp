@@ -346,6 +346,18 @@ TEST(LoadObjErrors, LoadMeshRejectsUnknownExtensions) {
     EXPECT_NE(message.find("no extension"), std::string::npos) << message;
 }
 
+TEST(LoadObjErrors, LoadMeshRefusesAFileOver2GiBBeforeReadingIt) {
+    // a sparse file: no disk space, and reading it would take seconds and gigabytes
+    const std::string path =
+        (fs::temp_directory_path() / ("raylane_huge_" + std::to_string(::getpid()) + ".obj"))
+            .string();
+    std::ofstream(path) << "v 0 0 0\n";
+    fs::resize_file(path, uintmax_t(max_mesh_file_bytes) + 1);
+    const std::string message = test::input_error_of([&] { load_mesh(path); });
+    fs::remove(path);
+    EXPECT_EQ(message, path + ": file is 2147483649 bytes, over the limit of 2^31 for a mesh");
+}
+
 // hostile input --------------------------------------------------------------------------
 
 TEST(LoadObjErrors, SurvivesRandomByteMutations) {

@@ -126,7 +126,7 @@ TEST(LoadSceneFeatures, TexturesAreLoadedOnceAndMissingOnesNameWhereItLooked) {
     EXPECT_EQ(s.textures[size_t(s.environment)].filter, TextureFilter::nearest);
     EXPECT_EQ(s.textures[size_t(s.materials[2].texture)].kind, TextureKind::checker);
     const std::string e = members_error(R"("materials": {"a": {"texture": "no_such.png"}})");
-    EXPECT_NE(e.find("$.materials.a.texture: no_such.png: model not found; looked in"),
+    EXPECT_NE(e.find("$.materials.a.texture: no_such.png: image not found; looked in"),
               std::string::npos)
         << e;
 }

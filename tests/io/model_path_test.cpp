@@ -145,5 +145,45 @@ TEST(FindModel, IgnoresFoldersWithTheModelName) {
     EXPECT_EQ(find_model("m.obj", dirs.dir("a")), file);
 }
 
+/// find_model's message for `name`, or "" when it finds the file.
+std::string find_error(const std::string& name, const std::string& scene_dir,
+                       ModelKind kind = ModelKind::mesh) {
+    try {
+        find_model(name, scene_dir, kind);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(FindModel, SaysWhatStandsWhereOnlySomethingElseHasTheName) {
+    TempDirs dirs;
+    ModelPathEnv env(nullptr);
+    fs::create_directories(dirs.root / "a" / "m.obj");
+    EXPECT_EQ(find_error("m.obj", dirs.dir("a")),
+              (dirs.root / "a" / "m.obj").string() + ": is a folder, not a file");
+    fs::create_symlink(dirs.root / "a" / "gone.ply", dirs.root / "a" / "link.ply");
+    EXPECT_EQ(find_error("link.ply", dirs.dir("a")),
+              (dirs.root / "a" / "link.ply").string() + ": is a link to nothing");
+    if (fs::exists("/dev/null")) {
+        EXPECT_EQ(find_error("/dev/null", "."),
+                  "/dev/null: is not a regular file (a device, "
+                  "pipe or socket)");
+    }
+}
+
+TEST(FindModel, RefusesANameWithANulByte) {
+    EXPECT_EQ(find_error(std::string("a\0b.obj", 7), "."),
+              "a\\0b.obj: a file name must not contain a NUL byte");
+}
+
+TEST(FindModel, AMissingTextureIsAnImageWithoutTheStanfordHint) {
+    TempDirs dirs;
+    const std::string message = find_error("no_such.png", dirs.dir("a"), ModelKind::texture);
+    EXPECT_EQ(message.find("no_such.png: image not found; looked in: " + dirs.dir("a")), 0u)
+        << message;
+    EXPECT_EQ(message.find("Scanning Repository"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace raylane
