@@ -26,7 +26,7 @@ CLI::Validator finite_non_negative();
 /// values). Use it with transform(): check() would pass on the original text.
 CLI::Validator whole_number();
 /// Checks, before any work, that an image path can be written: a .png or .pfm extension (any
-/// case), not a directory, in a directory that exists.
+/// case), not a directory, in a directory that exists and that this user may write in.
 CLI::Validator image_output();
 
 /// The build parameters a --bvh value names.

@@ -1,9 +1,12 @@
 // app: helpers the commands share.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -58,6 +61,9 @@ CLI::Validator image_output() {
             const std::filesystem::path dir = std::filesystem::path(path).parent_path();
             if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
                 return path + ": no such directory: " + dir.string();
+            const std::string folder = dir.empty() ? "." : dir.string();
+            if (::access(folder.c_str(), W_OK) != 0)
+                return path + ": cannot write in " + folder + ": " + std::strerror(errno);
             return {};
         },
         "FILE.png|FILE.pfm", "image_output");

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -136,12 +137,15 @@ template <class Write>
 void write_file(const std::string& path, Write&& write) {
     const std::string tmp = temp_name(path);
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error(path + ": cannot open for writing");
+    if (!f) throw std::runtime_error(path + ": cannot open for writing: " + std::strerror(errno));
+    errno = 0;
     bool ok = write(f);
     ok = (std::fclose(f) == 0) && ok;
     if (!ok) {
+        const int error = errno;
         std::remove(tmp.c_str());
-        throw std::runtime_error(path + ": write failed");
+        throw std::runtime_error(path + ": write failed" +
+                                 (error ? std::string(": ") + std::strerror(error) : ""));
     }
     commit_file(tmp, path);
 }
