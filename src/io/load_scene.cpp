@@ -461,6 +461,9 @@ class SceneReader : JsonReader {
             light.intensity = real(Node{v, path("intensity")}, Sign::non_negative);
         }
         if (const Json* v = find(n, "shadows")) light.shadows = boolean(Node{v, path("shadows")});
+        const double brightest = std::max({light.color.x, light.color.y, light.color.z});
+        if (!(brightest * double(light.intensity) <= double(std::numeric_limits<float>::max())))
+            fail(n, "the light's color times its intensity overflows the float range");
         if (light.is_area()) {
             check_area_light(n, light);
             light.samples = 16;
