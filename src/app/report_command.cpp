@@ -337,6 +337,9 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
         "glossy_rays,rmse,rmse_se,mse,mse_minus_var_ref,"
         "relmse,relmse_se,relmse_eps,smape,smape_eps,mean,ref_mean,nan_inf_values,nan_samples,"
         "speedup_over_scalar,reference,reference_spp,var_ref\n";
+    // the scene's name quoted (RFC 4180: a quote doubled), as a file name may hold , and "
+    std::string csv_stem;
+    for (const char c : ls.stem) csv_stem += c == '"' ? std::string("\"\"") : std::string(1, c);
     for (const SweepPoint& pt : points) {
         double lo = INFINITY, hi = 0.0;
         for (const RenderStats& r : pt.runs)
@@ -346,22 +349,22 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
         if (both && pt.path == RenderPath::packet)
             if (const auto v = speedup[{pt.knob, pt.samples}]) su = std::to_string(*v);
         char line[1024];
-        std::snprintf(line, sizeof line,
-                      "%s,%s,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%llu,%llu,%llu,%llu,%llu,%.6g,%."
-                      "3g,%.6g,%.6g,"
-                      "%.6g,%.3g,%g,%.6g,%g,%.6g,%.6g,%llu,%llu,%s,",
-                      ls.stem.c_str(), path_name(pt.path), knob_name(pt.knob), pt.samples, w, h,
-                      threads, sp.repeats, pt.seconds_median, lo, hi, pt.mrays_per_second(),
-                      static_cast<unsigned long long>(first.primary_rays),
-                      static_cast<unsigned long long>(first.shadow_rays),
-                      static_cast<unsigned long long>(first.reflection_rays),
-                      static_cast<unsigned long long>(first.refraction_rays),
-                      static_cast<unsigned long long>(first.glossy_rays), pt.error.rmse, pt.rmse_se,
-                      pt.error.mse, pt.error.mse - ref.variance, pt.error.relmse, pt.relmse_se,
-                      relmse_epsilon, pt.error.smape, smape_epsilon, pt.error.mean,
-                      pt.error.ref_mean,
-                      static_cast<unsigned long long>(pt.error.nan_values + pt.error.inf_values),
-                      static_cast<unsigned long long>(pt.nan_samples()), su.c_str());
+        std::snprintf(
+            line, sizeof line,
+            "\"%s\",%s,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%llu,%llu,%llu,%llu,%llu,%.6g,%."
+            "3g,%.6g,%.6g,"
+            "%.6g,%.3g,%g,%.6g,%g,%.6g,%.6g,%llu,%llu,%s,",
+            csv_stem.c_str(), path_name(pt.path), knob_name(pt.knob), pt.samples, w, h, threads,
+            sp.repeats, pt.seconds_median, lo, hi, pt.mrays_per_second(),
+            static_cast<unsigned long long>(first.primary_rays),
+            static_cast<unsigned long long>(first.shadow_rays),
+            static_cast<unsigned long long>(first.reflection_rays),
+            static_cast<unsigned long long>(first.refraction_rays),
+            static_cast<unsigned long long>(first.glossy_rays), pt.error.rmse, pt.rmse_se,
+            pt.error.mse, pt.error.mse - ref.variance, pt.error.relmse, pt.relmse_se,
+            relmse_epsilon, pt.error.smape, smape_epsilon, pt.error.mean, pt.error.ref_mean,
+            static_cast<unsigned long long>(pt.error.nan_values + pt.error.inf_values),
+            static_cast<unsigned long long>(pt.nan_samples()), su.c_str());
         csv += line;
         std::snprintf(line, sizeof line, "\"%s\",%d,%.6g\n", ref.kind.c_str(), ref.spp,
                       ref.variance);

@@ -67,6 +67,20 @@ TEST(ReportCli, ReusesTheCachedReferenceUntilTheSceneChanges) {
     fs::remove_all(dir);
 }
 
+TEST(ReportCli, QuotesTheSceneNameInTheCsv) {
+    const fs::path dir = temp_dir();
+    write_file(dir / "a,b\"c.json", slurp(RAYLANE_SOURCE_DIR "/scenes/builtin.json"));
+    const CliRun r =
+        run("report '" + (dir / "a,b\"c.json").string() + "' --out-dir " + (dir / "out").string() +
+            " --width 16 --height 12 --reference-spp 16 --spp-list 1 --repeats 1 "
+            "--paths packet --threads 1 -q");
+    ASSERT_EQ(r.code, 0) << r.out << r.err;
+    const std::string csv = slurp(dir / "out" / "a,b\"c.csv");
+    const size_t row = csv.find('\n') + 1;
+    EXPECT_EQ(csv.compare(row, 16, "\"a,b\"\"c\",packet,"), 0) << csv;
+    fs::remove_all(dir);
+}
+
 TEST(ReportCli, UsesTheAnalyticReferenceWhenTheSceneHasOne) {
     const fs::path dir = temp_dir();
     write_file(dir / "lit_sphere.json",
