@@ -18,6 +18,9 @@ void add_report_command(CLI::App& app, int& exit_code);
 /// Adds --bvh to a command: median (the report's build, the default) or sah (binned SAH, a
 /// comparison option).
 void add_bvh_option(CLI::App* cmd, std::string& bvh);
+/// Adds --threads to a command: 1 to 1024 worker threads, at most as many as this machine runs
+/// at once (oneTBB would ignore more, and say so in two lines on stderr); 0, the default, is all.
+void add_threads_option(CLI::App* cmd, int& threads);
 /// Checks that an option's value is a finite number >= 0 (CLI::Range lets NaN through and
 /// prints its bounds in full).
 CLI::Validator finite_non_negative();

@@ -1,4 +1,5 @@
 // app: helpers the commands share.
+#include <tbb/info.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,6 +23,19 @@ void add_bvh_option(CLI::App* cmd, std::string& bvh) {
                     "BVH build: median (the report's median split, default) or sah (binned SAH, "
                     "for comparison)")
         ->check(CLI::IsMember({"median", "sah"}));
+}
+
+void add_threads_option(CLI::App* cmd, int& threads) {
+    cmd->add_option("--threads", threads, "worker threads (default: all; at most the cores)")
+        ->check(CLI::Range(1, 1024))
+        ->transform(CLI::Validator(
+            [](std::string& text) -> std::string {
+                // (after the range check: text is a whole number from 1 to 1024)
+                const int cores = tbb::info::default_concurrency();
+                if (std::atoi(text.c_str()) > cores) text = std::to_string(cores);
+                return {};
+            },
+            "", "at_most_cores"));
 }
 
 CLI::Validator finite_non_negative() {

@@ -70,8 +70,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
         ->check(CLI::Range(1, 1 << 20));
-    cmd->add_option("--threads", o->threads, "worker threads (default: all)")
-        ->check(CLI::Range(1, 1024));
+    add_threads_option(cmd, o->threads);
     cmd->add_option("--width", o->width, "image width")->check(CLI::Range(1, max_film_side));
     cmd->add_option("--height", o->height, "image height")->check(CLI::Range(1, max_film_side));
     add_bvh_option(cmd, o->bvh);

@@ -471,8 +471,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"packet", "scalar"}));
     cmd->add_option("--repeats", o->repeats, "seeds per point; time = median (default 3)")
         ->check(CLI::Range(1, 100));
-    cmd->add_option("--threads", o->threads, "worker threads (default: all)")
-        ->check(CLI::Range(1, 1024));
+    add_threads_option(cmd, o->threads);
     cmd->add_option("--width", o->width, "image width (alone: keeps the aspect ratio)")
         ->check(CLI::Range(1, max_film_side));
     cmd->add_option("--height", o->height, "image height (alone: keeps the aspect ratio)")

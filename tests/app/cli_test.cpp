@@ -108,6 +108,16 @@ TEST(Cli, RenderWritesTheImageAndReportsTiming) {
     EXPECT_FALSE(std::filesystem::exists(png + ".partial"));
 }
 
+TEST(Cli, MoreThreadsThanCoresRunOnTheCoresWithoutWarnings) {
+    const std::string png =
+        (std::filesystem::temp_directory_path() / "raylane_cli_threads.png").string();
+    const CliRun r = run("render --width 16 -q --threads 1000 -o " + png);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err, "");  // oneTBB's two lines of warning, before
+    EXPECT_EQ(r.out.find("1000 threads"), std::string::npos) << r.out;
+    std::filesystem::remove(png);
+}
+
 /// Reads the floats of a PFM written by raylane (little-endian, 3 channels).
 std::vector<float> read_pfm_values(const std::string& path) {
     std::ifstream f(path, std::ios::binary);
