@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "app/commands.h"
 #include "core/error.h"
@@ -32,6 +33,21 @@ int main(int argc, char** argv) {
     raylane::add_info_command(app, exit_code);
     raylane::add_compare_command(app, exit_code);
     raylane::add_report_command(app, exit_code);
+    // CLI11 answers an unknown command word with "A subcommand is required": name it instead
+    if (argc > 1 && argv[1][0] != '-') {
+        std::string names;
+        bool known = false;
+        for (const CLI::App* cmd : app.get_subcommands({})) {
+            names += (names.empty() ? "" : ", ") + cmd->get_name();
+            known = known || cmd->get_name() == argv[1];
+        }
+        if (!known) {
+            std::fprintf(stderr,
+                         "raylane: unknown command '%s' (commands: %s; see raylane --help)\n",
+                         argv[1], names.c_str());
+            return 2;
+        }
+    }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     try {

@@ -49,6 +49,10 @@ std::string member_path(const std::string& parent, std::string_view key) {
         plain = plain && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
                           (c >= '0' && c <= '9') || c == '_');
     }
+    if (key.size() > 64) {  // a message names the key, not a megabyte of it
+        const std::string shown = json_quoted(key.substr(0, 60));
+        return parent + "[" + shown.substr(0, shown.size() - 1) + "...\"]";
+    }
     return plain ? parent + "." + std::string(key) : parent + "[" + json_quoted(key) + "]";
 }
 
@@ -60,7 +64,8 @@ std::string element_path(const std::string& parent, size_t index) {
 /// "an object", "an array", ...: what a value is, for "must be X, got Y".
 std::string describe_type(const Json& j) {
     if (j.is_object()) return "an object";
-    if (j.is_array()) return "an array";
+    if (j.is_array())
+        return j.empty() ? "an empty array" : "an array of " + std::to_string(j.size());
     if (j.is_string()) return "a string";
     if (j.is_boolean()) return "a boolean";
     if (j.is_number()) return "a number";
@@ -193,6 +198,8 @@ class DomBuilder {
             at = at == std::string::npos ? 0 : at + 2;
         }
         error_message = printable(what.substr(at));
+        if (error_message.size() > 200)  // nlohmann's "last read" may be the whole input
+            error_message = error_message.substr(0, 200) + "...";
         return false;
     }
 

@@ -60,6 +60,7 @@ TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
         EXPECT_EQ(r.code, 2) << args;
         EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
     }
+    EXPECT_NE(run("frobnicate").err.find("unknown command 'frobnicate'"), std::string::npos);
     // an output path that is a directory is refused before the render, not after it
     const auto dir = std::filesystem::temp_directory_path() / "raylane_cli_dir.png";
     std::filesystem::create_directories(dir);

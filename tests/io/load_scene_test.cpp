@@ -390,7 +390,26 @@ TEST(LoadScene, NamesTheJsonPathOfBadCameraValues) {
         EXPECT_EQ(got.substr(0, expected.size()), expected) << "for " << c.camera;
     }
     EXPECT_EQ(scene_error("{}"), "scenes/bad.json: $.camera: missing (required)");
-    EXPECT_EQ(scene_error("[]"), "scenes/bad.json: $: must be an object, got an array");
+    EXPECT_EQ(scene_error("[]"), "scenes/bad.json: $: must be an object, got an empty array");
+}
+
+TEST(LoadScene, MessagesSayHowLongAnArrayIsAndCutLongKeysAndSyntax) {
+    EXPECT_EQ(scene_error(scene_with(R"("objects": [{"shape": "sphere", "center": [1, 2]}])")),
+              "scenes/bad.json: $.objects[0].center: must be an array of 3 numbers, got an "
+              "array of 2");
+    // a key of a million characters is named by its first 60
+    const std::string key(1000000, 'k');
+    EXPECT_EQ(scene_error(scene_with("\"" + key + "\": 1")),
+              "scenes/bad.json: $[\"" + key.substr(0, 60) +
+                  "...\"]: unknown key (expected: version, description, camera, background, "
+                  "environment, shading, tonemap, materials, objects, lights)");
+    // errors in a megabyte-long token quote 200 characters of it at most
+    for (const std::string& json : {"{\"camera\": \"" + std::string(1000000, 'a'),
+                                    "{\"camera\": " + std::string(1000000, '9')}) {
+        const std::string message = scene_error(json);
+        EXPECT_LT(message.size(), 300u) << message.substr(0, 300);
+        EXPECT_EQ(message.substr(message.size() - 3), "...") << message.substr(0, 300);
+    }
 }
 
 TEST(LoadScene, RejectsDuplicateKeysWithTheirPath) {
@@ -453,7 +472,7 @@ TEST(LoadScene, AcceptsNestingUpToTheLimit) {
     auto nested = [](int n) { return std::string(size_t(n), '[') + std::string(size_t(n), ']'); };
     for (int n : {max_scene_json_depth - 2, max_scene_json_depth - 1}) {
         EXPECT_EQ(scene_error(scene_with("\"objects\": " + nested(n))),
-                  "scenes/bad.json: $.objects[0]: must be an object, got an array");
+                  "scenes/bad.json: $.objects[0]: must be an object, got an array of 1");
     }
     std::string too_deep = scene_error(scene_with("\"objects\": " + nested(max_scene_json_depth)));
     EXPECT_NE(too_deep.find("JSON nested deeper than 64 levels"), std::string::npos) << too_deep;
