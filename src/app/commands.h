@@ -18,9 +18,11 @@ void add_report_command(CLI::App& app, int& exit_code);
 /// Adds --bvh to a command: median (the report's build, the default) or sah (binned SAH, a
 /// comparison option).
 void add_bvh_option(CLI::App* cmd, std::string& bvh);
-/// Adds --threads to a command: 1 to 1024 worker threads, at most as many as this machine runs
-/// at once (oneTBB would ignore more, and say so in two lines on stderr); 0, the default, is all.
+/// Adds --threads to a command: 1 to 1024 worker threads (0, the default, is all).
 void add_threads_option(CLI::App* cmd, int& threads);
+/// The threads a command runs on for --threads `requested`: at most as many as this machine
+/// runs at once (oneTBB would ignore more, and say so in two lines on stderr); 0 stays 0 (all).
+int worker_threads(int requested);
 /// Checks that an option's value is a finite number >= 0 (CLI::Range lets NaN through and
 /// prints its bounds in full).
 CLI::Validator finite_non_negative();

@@ -27,15 +27,11 @@ void add_bvh_option(CLI::App* cmd, std::string& bvh) {
 
 void add_threads_option(CLI::App* cmd, int& threads) {
     cmd->add_option("--threads", threads, "worker threads (default: all; at most the cores)")
-        ->check(CLI::Range(1, 1024))
-        ->transform(CLI::Validator(
-            [](std::string& text) -> std::string {
-                // (after the range check: text is a whole number from 1 to 1024)
-                const int cores = tbb::info::default_concurrency();
-                if (std::atoi(text.c_str()) > cores) text = std::to_string(cores);
-                return {};
-            },
-            "", "at_most_cores"));
+        ->check(CLI::Range(1, 1024));
+}
+
+int worker_threads(int requested) {
+    return requested > 0 ? std::min(requested, tbb::info::default_concurrency()) : requested;
 }
 
 CLI::Validator finite_non_negative() {

@@ -24,7 +24,7 @@ int run_compare(const CompareOptions& o) {
     const Accel accel = build_accel(scene, build_params(o.bvh));
     RenderParams params;
     params.spp = o.spp > 0 ? o.spp : scene.camera.spp;
-    params.threads = o.threads;
+    params.threads = worker_threads(o.threads);
     const RenderResult scalar = render_scalar(scene, accel, params);
     const RenderResult packet = render_packet(scene, accel, params);
     const ImageDiff d = diff_images(scalar.film, packet.film);

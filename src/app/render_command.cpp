@@ -38,12 +38,16 @@ int run_render(const RenderOptions& o) {
     if (!parse_aov(o.aov, params.aov))
         throw InputError("--aov: unknown output \"" + o.aov +
                          "\" (use color, normal, depth or bvh-cost)");
+    // the default output is checked before the render too, as -o is
+    const std::string output = o.output.empty() ? default_output(o) : o.output;
+    if (const std::string why = image_output()(output); !why.empty())
+        throw InputError("output: " + why);
     const double t_load = now_seconds();
     Scene scene = load_scene_or_builtin(o.scene_path);
     const double load_ms = elapsed_ms(t_load);
     apply_resolution(scene.camera, o.width, o.height);
     params.spp = o.spp > 0 ? o.spp : scene.camera.spp;
-    params.threads = o.threads;
+    params.threads = worker_threads(o.threads);
     params.seed = o.seed;
     params.progress = !o.quiet;
 
@@ -53,19 +57,18 @@ int run_render(const RenderOptions& o) {
 
     RenderResult result = o.path == "scalar" ? render_scalar(scene, accel, params)
                                              : render_packet(scene, accel, params);
-    const std::string output = o.output.empty() ? default_output(o) : o.output;
     const bool colour = params.aov == Aov::color;
     const bool report_look = colour && scene.tonemap == Tonemap::report;
     // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages)
     const Film film = report_look ? hue_preserving_clamp(std::move(result.film))
                                   : visualise_aov(std::move(result.film), params.aov);
     // the bytes and the PNG's stream are made in parallel: on the threads --threads allows
-    tbb::task_arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic).execute([&] {
+    tbb::task_arena(params.threads > 0 ? params.threads : tbb::task_arena::automatic).execute([&] {
         write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
     });
 
     const RenderStats& s = result.stats;
-    const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+    const int threads = params.threads > 0 ? params.threads : tbb::info::default_concurrency();
     std::printf("scene      %s\n", scene.source.c_str());
     std::printf("resolution %dx%d, %d spp, %s\n", scene.camera.width, scene.camera.height,
                 params.spp, aov_name(params.aov));

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iterator>
 #include <string>
+#include <type_traits>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -49,8 +50,10 @@ std::string member_path(const std::string& parent, std::string_view key) {
         plain = plain && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
                           (c >= '0' && c <= '9') || c == '_');
     }
-    if (key.size() > 64) {  // a message names the key, not a megabyte of it
-        const std::string shown = json_quoted(key.substr(0, 60));
+    if (key.size() > 60) {  // a message names the key, not a megabyte of it
+        size_t cut = 60;    // on a UTF-8 character's first byte
+        while (cut > 0 && (static_cast<unsigned char>(key[cut]) & 0xc0) == 0x80) --cut;
+        const std::string shown = json_quoted(key.substr(0, cut));
         return parent + "[" + shown.substr(0, shown.size() - 1) + "...\"]";
     }
     return plain ? parent + "." + std::string(key) : parent + "[" + json_quoted(key) + "]";
@@ -141,6 +144,10 @@ size_t find_depth_overflow(std::string_view text, int limit) {
 // Parsing: a SAX handler that builds the DOM (nlohmann's sax_parse is iterative, so the depth
 // limit is what bounds the recursion of everything that later walks the tree).
 
+// DomBuilder appends an object's members to ordered_json's vector directly (key() below)
+static_assert(std::is_base_of_v<Json::object_t::Container, Json::object_t>,
+              "nlohmann::ordered_map keeps its members in a std::vector");
+
 class DomBuilder {
   public:
     explicit DomBuilder(int max_depth) : max_depth_(size_t(max_depth)) {}
@@ -197,9 +204,9 @@ class DomBuilder {
             at = what.find("] ");
             at = at == std::string::npos ? 0 : at + 2;
         }
-        error_message = printable(what.substr(at));
-        if (error_message.size() > 200)  // nlohmann's "last read" may be the whole input
-            error_message = error_message.substr(0, 200) + "...";
+        // nlohmann's "last read" may be the whole input: 200 bytes of the reason at most
+        error_message = what.size() - at > 200 ? printable(what.substr(at, 200)) + "..."
+                                               : printable(what.substr(at));
         return false;
     }
 

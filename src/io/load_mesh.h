@@ -12,8 +12,9 @@ namespace raylane {
 inline constexpr int64_t max_mesh_file_bytes = int64_t{1} << 31;
 
 /// load_obj for ".obj", load_ply for ".ply" (extension compared case-insensitively).
-/// Any other extension throws InputError "path: unsupported mesh format ...", and so does a
-/// file over max_mesh_file_bytes.
+/// A file over max_mesh_file_bytes throws InputError "path: file is N bytes, over the limit of
+/// 2^31 for a mesh" before anything is read; any other extension "path: unsupported mesh
+/// format ...".
 Mesh load_mesh(const std::string& path);
 
 }  // namespace raylane

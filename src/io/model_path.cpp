@@ -23,7 +23,9 @@ std::string file_problem(const fs::path& path) {
         return fs::is_directory(status) ? "is a folder, not a file"
                                         : "is not a regular file (a device, pipe or socket)";
     }
-    if (error && error != std::errc::no_such_file_or_directory) return error.message();
+    // a link loop is said; other errors (a folder this user may not search, a file name under
+    // a file) count as missing, so the message does not depend on who runs it
+    if (error == std::errc::too_many_symbolic_link_levels) return error.message();
     if (fs::is_symlink(fs::symlink_status(path, error))) return "is a link to nothing";
     return "missing";
 }

@@ -188,7 +188,8 @@ inline constexpr int max_path_depth = 64;
 /// ray would be traced, only the larger of the two (by Fresnel weight; the reflection on a tie)
 /// goes on. Nested glass otherwise doubles the rays of a sample at every interaction (2^64 at
 /// max_refraction_depth 64); this keeps a sample's tree at most 2^glass_fork_depth paths wide,
-/// and a path longer than it is linear. Scenes within the depth limit's default never reach it.
+/// and a path longer than it is linear. Scenes with max_refraction_depth <= glass_fork_depth
+/// never reach it.
 inline constexpr int glass_fork_depth = 10;
 
 /// Scene-wide shading switches, including the report's analysis images (Figures 4 and 6).

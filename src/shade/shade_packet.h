@@ -136,10 +136,12 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
             const vmask<W> reflects = mask_and(alive, r > zero);
             // the rays this interaction may trace (a reflection below the geometric surface is
             // discarded); past glass_fork_depth only the larger of two (scene.h)
-            vmask<W> traced = mask_and(reflects, dot(ng, reflected_dir) > zero);
-            vmask<W> transmits = mask_and(mask_and(alive, refracts), r < one);
-            if (!o.reflection || o.override_reflected) traced = mask_andnot(traced, traced);
-            if (!o.refraction) transmits = mask_andnot(transmits, transmits);
+            const vmask<W> no_lanes = mask_from_bits<W>(0);
+            vmask<W> traced = o.reflection && !o.override_reflected
+                                  ? mask_and(reflects, dot(ng, reflected_dir) > zero)
+                                  : no_lanes;
+            vmask<W> transmits =
+                o.refraction ? mask_and(mask_and(alive, refracts), r < one) : no_lanes;
             const vmask<W> no_fork =
                 mask_andnot(mask_and(traced, transmits), lt(refr_depth, vint<W>(glass_fork_depth)));
             const vmask<W> reflection_larger = r >= vfloat<W>(0.5f);

@@ -55,7 +55,9 @@ TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
                              "render -o /no/such/dir/image.png",
                              "render -o /",
                              "render --width 32768 --height 8193",
-                             "compare --width 32768"}) {
+                             "compare --width 32768",
+                             "render --threads 5000",
+                             "render --threads 3x"}) {
         const CliRun r = run(args);
         EXPECT_EQ(r.code, 2) << args;
         EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
@@ -68,6 +70,7 @@ TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, MalformedSceneNamesFileAndPath) {

@@ -360,7 +360,7 @@ TYPED_TEST(FresnelGridPacket, SlabTransmitsTheInfiniteSeriesOfInternalReflection
 /// A camera inside two nested glass boxes, looking at two concentric glass spheres: nearly every
 /// ray meets glass again, so without glass_fork_depth each interaction doubles the rays (this
 /// 2x2 image traced 551,120 glass rays at depth 28, and ran out of memory at depth 64).
-Scene nested_glass(int depth) {
+Scene nested_glass(int depth, const std::string& more_shading = "") {
     return load_scene_from_string(
         R"({"version": 1,
             "camera": {"position": [0, 1, -5], "look_at": [0, 0.5, 0], "fov_deg": 60,
@@ -373,7 +373,7 @@ Scene nested_glass(int depth) {
               {"shape": "box", "min": [-11, -11, -11], "max": [11, 11, 11], "material": "glass"}],
             "lights": [{"type": "point", "position": [-3, 5, -4], "intensity": 40}],
             "shading": {"max_refraction_depth": )" +
-            std::to_string(depth) + "}}",
+            std::to_string(depth) + more_shading + "}}",
         "nested_glass.json");
 }
 
@@ -398,20 +398,28 @@ TEST(FresnelNested, GlassInGlassTracesABoundedTreeAtEveryDepthLimit) {
 
 TYPED_TEST(FresnelGridPacket, NestedGlassTracesTheScalarTree) {
     constexpr int W = TypeParam::value;
-    for (const int depth : {4, 28, 64}) {
-        const Scene s = nested_glass(depth);
+    // the depths, and past the fork limit with each switch of the glass term
+    const std::vector<std::pair<int, std::string>> cases = {
+        {4, ""},
+        {28, ""},
+        {64, ""},
+        {28, R"(, "reflection": false)"},
+        {28, R"(, "refraction": false)"},
+        {28, R"(, "reflected_color": [1, 0, 1])"}};
+    for (const auto& [depth, shading] : cases) {
+        const Scene s = nested_glass(depth, shading);
         const Accel accel = build_accel(s, BuildParams{});
         const RenderResult scalar = render_scalar(s, accel, RenderParams{});
         ASSERT_LE(scalar.stats.reflection_rays + scalar.stats.refraction_rays,
                   4u * glass_ray_bound(depth));  // (the next depth: 2^64 rays)
         const RenderResult packet = render_packet_width<W>(s, accel, RenderParams{});
-        ASSERT_EQ(packet.stats.reflection_rays, scalar.stats.reflection_rays) << depth;
-        ASSERT_EQ(packet.stats.refraction_rays, scalar.stats.refraction_rays) << depth;
+        ASSERT_EQ(packet.stats.reflection_rays, scalar.stats.reflection_rays) << depth << shading;
+        ASSERT_EQ(packet.stats.refraction_rays, scalar.stats.refraction_rays) << depth << shading;
         for (size_t i = 0; i < scalar.film.pixels.size(); ++i)
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(packet.film.pixels[i][c], scalar.film.pixels[i][c],
                             1e-5f * scalar.film.pixels[i][c] + 1e-7f)
-                    << depth << " pixel " << i;
+                    << depth << shading << " pixel " << i;
     }
 }
 
