@@ -38,10 +38,12 @@ int run_render(const RenderOptions& o) {
     if (!parse_aov(o.aov, params.aov))
         throw InputError("--aov: unknown output \"" + o.aov +
                          "\" (use color, normal, depth or bvh-cost)");
-    // the default output is checked before the render too, as -o is
+    // -o is checked as the command line is read; the default output here, before the render
     const std::string output = o.output.empty() ? default_output(o) : o.output;
-    if (const std::string why = image_output()(output); !why.empty())
-        throw InputError("output: " + why);
+    if (o.output.empty()) {
+        if (const std::string why = image_output()(output); !why.empty())
+            throw InputError("output: " + why);
+    }
     const double t_load = now_seconds();
     Scene scene = load_scene_or_builtin(o.scene_path);
     const double load_ms = elapsed_ms(t_load);
