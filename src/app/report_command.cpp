@@ -134,8 +134,8 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
     const double t_build = now_seconds();
     const Accel accel = build_accel(scene, BuildParams{});
     const double build_ms = elapsed_ms(t_build);
-    const int threads =
-        o.threads > 0 ? worker_threads(o.threads) : tbb::info::default_concurrency();
+    const int workers = worker_threads(o.threads);  // 0: all
+    const int threads = workers > 0 ? workers : tbb::info::default_concurrency();
     bool ok = true;
 
     std::printf("report  scene=%s  %dx%d  threads=%d  W=%d\n", ls.path.c_str(), w, h, threads,
@@ -147,7 +147,7 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
     // reference
     ReferenceParams rp;
     rp.spp = o.reference_spp;
-    rp.threads = worker_threads(o.threads);
+    rp.threads = workers;
     rp.path = o.reference_path == "scalar" ? RenderPath::scalar : RenderPath::packet;
     Reference ref;
     const double t_analytic = now_seconds();
@@ -213,7 +213,7 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
     sp.knobs = sweep_knobs(scene);
     sp.samples = o.spp_list;
     sp.repeats = o.repeats;
-    sp.threads = worker_threads(o.threads);
+    sp.threads = workers;
     rep.phase(
         ls.stem + ": sweep, " +
         std::to_string(sp.paths.size() * sp.knobs.size() * sp.samples.size() * size_t(sp.repeats)) +
