@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <random>
 
 namespace raylane::bench {
 
@@ -118,6 +119,28 @@ int run_benchmarks(int argc, char** argv, Summary summary) {
 std::optional<double> divide(std::optional<double> a, std::optional<double> b) {
     if (!a || !b || *b == 0.0) return std::nullopt;
     return *a / *b;
+}
+
+std::optional<std::pair<double, double>> median_ratio_interval(const Measured& m,
+                                                               const std::string& num,
+                                                               const std::string& den) {
+    const auto a = m.ms.find(num), b = m.ms.find(den);
+    constexpr size_t min_repetitions = 5;
+    if (a == m.ms.end() || b == m.ms.end() || a->second.size() < min_repetitions ||
+        b->second.size() < min_repetitions)
+        return std::nullopt;
+    std::mt19937 rng(20261203);
+    auto resampled_median = [&](const std::vector<double>& v) {
+        std::uniform_int_distribution<size_t> pick(0, v.size() - 1);
+        std::vector<double> r(v.size());
+        for (double& x : r) x = v[pick(rng)];
+        return *median(std::move(r));
+    };
+    constexpr size_t resamples = 2000;
+    std::vector<double> ratios(resamples);
+    for (double& r : ratios) r = resampled_median(a->second) / resampled_median(b->second);
+    std::sort(ratios.begin(), ratios.end());
+    return std::make_pair(ratios[resamples / 40], ratios[resamples - 1 - resamples / 40]);
 }
 
 std::optional<double> best_of(const std::vector<std::optional<double>>& values) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace raylane::bench {
@@ -38,6 +39,14 @@ int run_benchmarks(int argc, char** argv, Summary summary);
 
 /// a / b when both are there.
 std::optional<double> divide(std::optional<double> a, std::optional<double> b);
+
+/// A 95 % bootstrap interval of median(num) / median(den), the ratio of two benchmarks' median
+/// real times, from their repetitions: 2,000 resamples of each set with a fixed seed (the same
+/// run gives the same interval). None when either has fewer than 5 repetitions. It covers the
+/// spread within one run only, not a slower machine on another day.
+std::optional<std::pair<double, double>> median_ratio_interval(const Measured& m,
+                                                               const std::string& num,
+                                                               const std::string& den);
 
 /// The largest of the values that are there.
 std::optional<double> best_of(const std::vector<std::optional<double>>& values);
