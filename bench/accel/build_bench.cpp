@@ -6,6 +6,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "accel/bvh.h"
 #include "io/load_mesh.h"
@@ -45,15 +49,30 @@ const Mesh* model(const std::string& file, int level) {
     return &cache.emplace(key, std::move(m)).first->second;
 }
 
+/// The median-split build's phases, as the counters name them, in the order they run.
+std::vector<std::pair<std::string, double>> phase_times(const BuildPhases& p) {
+    return {{"centroids_ms", p.centroids},
+            {"sorts_ms", p.sorts},
+            {"splits_ms", p.splits},
+            {"vertices_ms", p.vertices},
+            {"boxes_ms", p.boxes}};
+}
+
 void build_mesh(benchmark::State& state, const char* file, int level, BvhBuild method) {
     const Mesh* mesh = model(file, level);
     if (!mesh) {
         state.SkipWithError("model not found");
         return;
     }
+    BuildPhases sum;
     for (auto _ : state) {
         MeshAccel accel = build_mesh_accel(*mesh, BuildParams{.method = method});
         benchmark::DoNotOptimize(accel.bvh.nodes.data());
+        sum += accel.phases;
+    }
+    if (method == BvhBuild::median) {  // each phase's mean time per build
+        for (const auto& [name, ms] : phase_times(sum))
+            state.counters[name] = benchmark::Counter(ms, benchmark::Counter::kAvgIterations);
     }
     const double n = static_cast<double>(mesh->tris.size());
     state.counters["triangles"] = n;
@@ -119,6 +138,54 @@ BENCHMARK_CAPTURE(BM_BuildMedianFirst, dragon_1600k, "dragon.ply", 2)
 BENCHMARK_CAPTURE(BM_BuildBvhMedian, dragon_100k, "dragon.ply", 0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BuildBvhMedian, dragon_1600k, "dragon.ply", 2)->Unit(benchmark::kMillisecond);
 
+/// The repeated build's phases (medians over the repetitions of each phase's mean time per
+/// build) at each size, and each phase's growth per 4x step beside what its order allows.
+void print_phases(const bench::Measured& m, std::ostream& out) {
+    const char* sizes[3] = {"dragon_100k", "dragon_400k", "dragon_1600k"};
+    auto name = [&](int i) { return std::string("BM_BuildMedian/") + sizes[i]; };
+    const std::vector<std::pair<std::string, double>> phases = phase_times(BuildPhases{});
+    if (!m.median_counter(name(1), phases[0].first) && !m.median_counter(name(2), phases[0].first))
+        return;  // no build of 400k or 1.6M triangles was run
+    const char* labels[] = {"centroids (and the arrays made)", "the three radix sorts",
+                            "median splits", "vertices in leaf order", "node boxes"};
+    const char* orders[] = {"n", "n", "n log n", "n", "n"};
+    out << "\nWhere the repeated build's time goes (each phase's mean per build, median of the "
+           "repetitions):\n\n| phase | grows as | 100k | 400k | 1.6M | 100k → 400k | 400k → 1.6M "
+           "|\n|---|---|---:|---:|---:|---:|---:|\n";
+    std::optional<double> n[3];
+    for (int i = 0; i < 3; ++i) n[i] = m.median_counter(name(i), "triangles");
+    std::optional<double> sum[3];
+    auto add = [](std::optional<double>& a, std::optional<double> b) {
+        if (b) a = a.value_or(0.0) + *b;
+    };
+    for (size_t p = 0; p < phases.size(); ++p) {
+        std::optional<double> ms[3];
+        for (int i = 0; i < 3; ++i) {
+            ms[i] = m.median_counter(name(i), phases[p].first);
+            add(sum[i], ms[i]);
+        }
+        out << "| " << labels[p] << " | " << orders[p];
+        for (int i = 0; i < 3; ++i) out << " | " << bench::figure_text(ms[i], "%.2f ms");
+        for (int i = 1; i < 3; ++i) out << " | " << bench::ratio_text(ms[i], ms[i - 1]);
+        out << " |\n";
+    }
+    out << "| the phases' sum | | " << bench::figure_text(sum[0], "%.2f ms") << " | "
+        << bench::figure_text(sum[1], "%.2f ms") << " | " << bench::figure_text(sum[2], "%.2f ms")
+        << " | " << bench::ratio_text(sum[1], sum[0]) << " | " << bench::ratio_text(sum[2], sum[1])
+        << " |\n";
+    out << "| what the order allows | n: | | | | " << bench::ratio_text(n[1], n[0]) << " | "
+        << bench::ratio_text(n[2], n[1]) << " |\n";
+    auto nlogn = [&](int i) -> std::optional<double> {
+        if (!n[i] || !n[i - 1]) return std::nullopt;
+        return (*n[i] * std::log(*n[i])) / (*n[i - 1] * std::log(*n[i - 1]));
+    };
+    out << "| | n log n: | | | | " << bench::figure_text(nlogn(1), "%.2fx") << " | "
+        << bench::figure_text(nlogn(2), "%.2fx") << " |\n";
+    out << "\nThe sum leaves out freeing the build's arrays, which the repeated build's time "
+           "includes. A phase that grows more than its order allows pays for memory: at 1.6M "
+           "triangles the build's arrays no longer fit the last-level cache.\n";
+}
+
 /// `--summary`: build times (medians), their growth per 4x more triangles against n log n, and
 /// issue #2's targets (the 100k dragon under 15 ms on one thread; growth no faster than n log n).
 /// With 5 or more repetitions a step's growth gets a 95 % bootstrap interval, and the step is
@@ -182,6 +249,7 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
            "(--benchmark_filter=BM_BuildMedianFirst/dragon_1600k). The sizes run one after the "
            "other, so a slow minute moves one step's growth; "
            "--benchmark_enable_random_interleaving=true spreads it over all three.\n";
+    print_phases(m, out);
 }
 
 }  // namespace

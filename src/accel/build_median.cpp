@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <cassert>
+#include <chrono>
 #include <cstring>
 #include <memory>
 #include <new>
@@ -290,6 +291,21 @@ void finish_nodes(std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes, Grow
     }
 }
 
+/// Wall time between laps, for BuildPhases.
+class PhaseClock {
+  public:
+    /// Milliseconds since the clock was made or last lapped.
+    double lap() {
+        const auto now = std::chrono::steady_clock::now();
+        const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+        last_ = now;
+        return ms;
+    }
+
+  private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 /// The median-split tree over n >= 1 primitives, without node bounds (finish_nodes sets them):
 /// nodes and prim_ids. fill(c2) writes twice every primitive's centroid (its box's lo + hi) to
 /// c2[0..2][0 .. n-1], one array per axis.
@@ -298,10 +314,12 @@ void finish_nodes(std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes, Grow
 /// lists) and a block of 16 bytes per primitive for the radix sort's items, reused for the side
 /// stamps after the sorts. The nine arrays are taken from `lent` when the caller lends 36n bytes
 /// it will overwrite afterwards (build_mesh_accel lends the triangle-vertex array it fills
-/// next), else from the block: fresh pages cost about 1.4 us each on this VM.
+/// next), else from the block: fresh pages cost about 1.4 us each on this VM. `phases`, when
+/// given, gets the times of the centroids, the sorts and the splits, measured from `clock`.
 template <class FillCentroids>
 Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
-                std::byte* lent = nullptr) {
+                std::byte* lent = nullptr, BuildPhases* phases = nullptr,
+                PhaseClock* clock = nullptr) {
     Bvh bvh;
     const uint32_t max_leaf = static_cast<uint32_t>(std::clamp(params.max_leaf_size, 1, 65535));
     bvh.prim_ids.resize(n);
@@ -321,6 +339,7 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
         lists[1][k] = begin_array<uint32_t>(nine + 4 * n * (6 + k), n);
     }
     fill(centroid2);
+    if (phases) phases->centroids = clock->lap();
     uint64_t* items = block.take<uint64_t>(n);
     uint64_t* scratch = block.take<uint64_t>(n);
     for (int k = 0; k < 3; ++k) {
@@ -329,6 +348,7 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
         else
             sort_ids_by_key<8>(centroid2[k], n, lists[0][k], items, scratch);
     }
+    if (phases) phases->sorts = clock->lap();
     // the sort's items are done with: their memory holds the side stamps
     uint8_t* side = reinterpret_cast<uint8_t*>(items);  // three bytes of padding for gathers
     std::memset(side, 0, n + 3);                        // stamp 0: no node yet
@@ -343,6 +363,7 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
         b.lists[1][k] = lists[1][k];
     }
     b.build(0, static_cast<uint32_t>(n), 0u, 0);
+    if (phases) phases->splits = clock->lap();
     return bvh;
 }
 
@@ -372,6 +393,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
     const size_t n = mesh.tris.size();
     if (n == 0) return accel;
     if (params.method == BvhBuild::sah) return build_mesh_accel_sah(mesh, params);
+    PhaseClock clock;  // the centroids' phase includes making the arrays the build fills
     const uvec3* tris = mesh.tris.data();
     const vec3* positions = mesh.positions.data();
     // the vertex array, 36 bytes per triangle, is lent to the build as its nine arrays before
@@ -390,15 +412,17 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
                 for (int k = 0; k < 3; ++k) c2[k][i] = box.lo[k] + box.hi[k];
             }
         },
-        lent);
+        lent, &accel.phases, &clock);
     // vertices in leaf order (made anew in the lent memory): a gather by id, its addresses
-    // asked for ahead (the triangle's indices 16 triangles ahead, its vertices 8 ahead, whose
-    // indices are then in cache)
+    // asked for ahead (the triangle's indices 64 triangles ahead, its vertices 32 ahead, whose
+    // indices are then in cache). Far enough ahead for memory, not only the last-level cache:
+    // from about 1M triangles the mesh no longer fits that cache (docs/performance.md).
     const uint32_t* ids = accel.bvh.prim_ids.data();
+    constexpr size_t tri_ahead = 64, vert_ahead = 32;
     for (size_t k = 0; k < n; ++k) {
-        if (k + 16 < n) __builtin_prefetch(&tris[ids[k + 16]]);
-        if (k + 8 < n) {
-            const uvec3 ahead = tris[ids[k + 8]];
+        if (k + tri_ahead < n) __builtin_prefetch(&tris[ids[k + tri_ahead]]);
+        if (k + vert_ahead < n) {
+            const uvec3 ahead = tris[ids[k + vert_ahead]];
             __builtin_prefetch(&positions[ahead.x]);
             __builtin_prefetch(&positions[ahead.y]);
             __builtin_prefetch(&positions[ahead.z]);
@@ -407,6 +431,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
         std::construct_at(&accel.verts[k],
                           TriangleVerts{positions[t.x], positions[t.y], positions[t.z]});
     }
+    accel.phases.vertices = clock.lap();
     const TriangleVerts* verts = accel.verts.data();
     finish_nodes(accel.bvh.nodes, [&](Aabb& box, uint32_t first, uint32_t count) {
         for (uint32_t p = first; p < first + count; ++p) {
@@ -415,6 +440,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
             box.grow(verts[p].c);
         }
     });
+    accel.phases.boxes = clock.lap();
     return accel;
 }
 

@@ -64,10 +64,32 @@ struct TriangleVerts {
     vec3 a, b, c;
 };
 
+/// Where a median-split mesh build's time went, in milliseconds of wall time, phase by phase in
+/// the order they run. build_mesh_accel fills it (the SAH build leaves it zero); `raylane info`
+/// prints it, and `bench_build --summary` each phase's growth with the number of triangles.
+struct BuildPhases {
+    double centroids = 0.0;  ///< the arrays made, each triangle's centroid (O(n))
+    double sorts = 0.0;      ///< the three radix sorts of the centroids (O(n))
+    double splits = 0.0;     ///< the median splits, level by level (O(n log n))
+    double vertices = 0.0;   ///< the vertices gathered in leaf order (O(n))
+    double boxes = 0.0;      ///< the node bounds, bottom up (O(n))
+};
+
+/// Adds b's phases to a's (a total over several builds).
+inline BuildPhases& operator+=(BuildPhases& a, const BuildPhases& b) {
+    a.centroids += b.centroids;
+    a.sorts += b.sorts;
+    a.splits += b.splits;
+    a.vertices += b.vertices;
+    a.boxes += b.boxes;
+    return a;
+}
+
 struct MeshAccel {
     Bvh bvh;
     std::vector<TriangleVerts, OverwriteAllocator<TriangleVerts>>
-        verts;  ///< verts[k] is triangle bvh.prim_ids[k] of the mesh
+        verts;           ///< verts[k] is triangle bvh.prim_ids[k] of the mesh
+    BuildPhases phases;  ///< how long the build's phases took
 };
 
 /// Both levels. Objects with infinite extent (planes) are kept out of the top-level BVH and

@@ -1,5 +1,9 @@
-// Tests of accel/build_median.cpp and accel/check_bvh.cpp: invariants of the median-split BVH.
+// Tests of accel/build_median.cpp and accel/check_bvh.cpp: invariants of the median-split BVH,
+// and the timing of a mesh build's phases.
 #include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
 
 #include "accel/bvh.h"
 #include "accel/random_boxes.h"
@@ -72,6 +76,42 @@ TEST(BuildMedian, AllCentroidsEqualStillTerminates) {
     std::vector<Aabb> boxes(300, Aabb{vec3(1.0f), vec3(2.0f)});
     const Bvh bvh = build_bvh_median(boxes, BuildParams{4});
     EXPECT_EQ(check_bvh(bvh, boxes, 4), "");
+}
+
+/// A wavy grid of w x w squares, two triangles each.
+Mesh grid_mesh(uint32_t w) {
+    Mesh mesh;
+    for (uint32_t y = 0; y <= w; ++y)
+        for (uint32_t x = 0; x <= w; ++x)
+            mesh.positions.push_back(vec3(float(x), float(y), std::sin(0.1f * float(x * y))));
+    for (uint32_t y = 0; y < w; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            const uint32_t a = y * (w + 1) + x, b = a + 1, c = a + w + 1, d = c + 1;
+            mesh.tris.push_back({a, b, d});
+            mesh.tris.push_back({a, d, c});
+        }
+    return mesh;
+}
+
+TEST(BuildMesh, PhasesAreTimedAndAddUpToNoMoreThanTheBuild) {
+    const Mesh mesh = grid_mesh(200);  // 80,000 triangles
+    const auto start = std::chrono::steady_clock::now();
+    const MeshAccel accel = build_mesh_accel(mesh, BuildParams{});
+    const double build_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const BuildPhases& p = accel.phases;
+    for (double ms : {p.centroids, p.sorts, p.splits, p.vertices, p.boxes}) EXPECT_GT(ms, 0.0);
+    BuildPhases sum;
+    sum += p;
+    sum += p;
+    EXPECT_LE(p.centroids + p.sorts + p.splits + p.vertices + p.boxes, build_ms);
+    EXPECT_DOUBLE_EQ(sum.splits, 2.0 * p.splits);
+    EXPECT_DOUBLE_EQ(sum.boxes, 2.0 * p.boxes);
+
+    // the SAH build times no phases
+    const BuildPhases sah = build_mesh_accel(mesh, BuildParams{.method = BvhBuild::sah}).phases;
+    for (double ms : {sah.centroids, sah.sorts, sah.splits, sah.vertices, sah.boxes})
+        EXPECT_EQ(ms, 0.0);
 }
 
 TEST(CheckBvh, DetectsAPrimitiveInTwoLeaves) {

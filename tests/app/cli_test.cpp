@@ -99,6 +99,24 @@ TEST(Cli, MalformedModelNamesFileAndLine) {
     EXPECT_NE(r.err.find("raylane_bad_model.obj:4"), std::string::npos) << r.err;
 }
 
+TEST(Cli, InfoPrintsTheMeshBuildsPhasesForTheMedianSplitOnly) {
+    const std::string obj = temp_file("raylane_info_phases.obj",
+                                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+    const std::string scene = temp_file(
+        "raylane_info_phases_scene.json",
+        R"({"camera": {"position": [0,0,-2], "look_at": [0,0,0], "fov_deg": 60, "resolution": [8,8]},
+            "objects": [{"shape": "mesh", "file": ")" +
+            obj + R"("}]})");
+    const CliRun median = run("info " + scene);
+    EXPECT_EQ(median.code, 0) << median.err;
+    for (const char* key : {"mesh builds: centroids", "sorts", "splits", "vertices", "boxes"})
+        EXPECT_NE(median.out.find(key), std::string::npos) << key << "\n" << median.out;
+    const CliRun sah = run("info --bvh sah " + scene);
+    EXPECT_EQ(sah.code, 0) << sah.err;
+    EXPECT_EQ(sah.out.find("mesh builds"), std::string::npos) << sah.out;
+    EXPECT_EQ(run("info").out.find("mesh builds"), std::string::npos);  // no mesh
+}
+
 TEST(Cli, RenderWritesTheImageAndReportsTiming) {
     const std::string png =
         (std::filesystem::temp_directory_path() / "raylane_cli_builtin.png").string();
