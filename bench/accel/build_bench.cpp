@@ -182,8 +182,9 @@ void print_phases(const bench::Measured& m, std::ostream& out) {
     out << "| | n log n: | | | | " << bench::figure_text(nlogn(1), "%.2fx") << " | "
         << bench::figure_text(nlogn(2), "%.2fx") << " |\n";
     out << "\nThe sum leaves out freeing the build's arrays, which the repeated build's time "
-           "includes. A phase that grows more than its order allows pays for memory: at 1.6M "
-           "triangles the build's arrays no longer fit the last-level cache.\n";
+           "includes. A phase that grows more than its order allows pays for memory (on the "
+           "development machine the 1.6M build's arrays outgrow the 32 MiB L3: "
+           "docs/performance.md).\n";
 }
 
 /// `--summary`: build times (medians), their growth per 4x more triangles against n log n, and
