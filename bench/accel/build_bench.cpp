@@ -181,8 +181,9 @@ void print_phases(const bench::Measured& m, std::ostream& out) {
     };
     out << "| | n log n: | | | | " << bench::figure_text(nlogn(1), "%.2fx") << " | "
         << bench::figure_text(nlogn(2), "%.2fx") << " |\n";
-    out << "\nThe sum leaves out freeing the build's arrays, which the repeated build's time "
-           "includes. A phase that grows more than its order allows pays for memory (on the "
+    out << "\nThe sum leaves out freeing the BVH and its vertices after each build, which the "
+           "repeated build's time includes (the splits include freeing the temporaries). A phase "
+           "that grows more than its order allows pays for memory (on the "
            "development machine the 1.6M build's arrays outgrow the 32 MiB L3: "
            "docs/performance.md).\n";
 }

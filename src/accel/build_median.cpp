@@ -327,42 +327,45 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
     // 4n / max_leaf + 1 nodes are made.
     bvh.nodes.reserve(4 * n / max_leaf + 1);
 
-    TempBlock block((lent ? 0 : 9 * TempBlock::bytes_for<uint32_t>(n)) +
-                    2 * TempBlock::bytes_for<uint64_t>(n));
-    // the nine arrays in the lent memory or the block
-    std::byte* nine = lent ? lent : reinterpret_cast<std::byte*>(block.take<uint32_t>(9 * n));
-    float* centroid2[3];
-    uint32_t* lists[2][3];
-    for (size_t k = 0; k < 3; ++k) {
-        centroid2[k] = begin_array<float>(nine + 4 * n * k, n);
-        lists[0][k] = begin_array<uint32_t>(nine + 4 * n * (3 + k), n);
-        lists[1][k] = begin_array<uint32_t>(nine + 4 * n * (6 + k), n);
+    assert(!phases == !clock);
+    {  // the temporaries' scope: freeing them is part of the splits' time
+        TempBlock block((lent ? 0 : 9 * TempBlock::bytes_for<uint32_t>(n)) +
+                        2 * TempBlock::bytes_for<uint64_t>(n));
+        // the nine arrays in the lent memory or the block
+        std::byte* nine = lent ? lent : reinterpret_cast<std::byte*>(block.take<uint32_t>(9 * n));
+        float* centroid2[3];
+        uint32_t* lists[2][3];
+        for (size_t k = 0; k < 3; ++k) {
+            centroid2[k] = begin_array<float>(nine + 4 * n * k, n);
+            lists[0][k] = begin_array<uint32_t>(nine + 4 * n * (3 + k), n);
+            lists[1][k] = begin_array<uint32_t>(nine + 4 * n * (6 + k), n);
+        }
+        fill(centroid2);
+        if (phases) phases->centroids = clock->lap();
+        uint64_t* items = block.take<uint64_t>(n);
+        uint64_t* scratch = block.take<uint64_t>(n);
+        for (int k = 0; k < 3; ++k) {
+            if (n >= (size_t(1) << 16))
+                sort_ids_by_key<16>(centroid2[k], n, lists[0][k], items, scratch);
+            else
+                sort_ids_by_key<8>(centroid2[k], n, lists[0][k], items, scratch);
+        }
+        if (phases) phases->sorts = clock->lap();
+        // the sort's items are done with: their memory holds the side stamps
+        uint8_t* side = reinterpret_cast<uint8_t*>(items);  // three bytes of padding for gathers
+        std::memset(side, 0, n + 3);                        // stamp 0: no node yet
+        Builder b{{centroid2[0], centroid2[1], centroid2[2]},
+                  side,
+                  {},
+                  bvh.prim_ids.data(),
+                  bvh.nodes,
+                  max_leaf};
+        for (int k = 0; k < 3; ++k) {
+            b.lists[0][k] = lists[0][k];
+            b.lists[1][k] = lists[1][k];
+        }
+        b.build(0, static_cast<uint32_t>(n), 0u, 0);
     }
-    fill(centroid2);
-    if (phases) phases->centroids = clock->lap();
-    uint64_t* items = block.take<uint64_t>(n);
-    uint64_t* scratch = block.take<uint64_t>(n);
-    for (int k = 0; k < 3; ++k) {
-        if (n >= (size_t(1) << 16))
-            sort_ids_by_key<16>(centroid2[k], n, lists[0][k], items, scratch);
-        else
-            sort_ids_by_key<8>(centroid2[k], n, lists[0][k], items, scratch);
-    }
-    if (phases) phases->sorts = clock->lap();
-    // the sort's items are done with: their memory holds the side stamps
-    uint8_t* side = reinterpret_cast<uint8_t*>(items);  // three bytes of padding for gathers
-    std::memset(side, 0, n + 3);                        // stamp 0: no node yet
-    Builder b{{centroid2[0], centroid2[1], centroid2[2]},
-              side,
-              {},
-              bvh.prim_ids.data(),
-              bvh.nodes,
-              max_leaf};
-    for (int k = 0; k < 3; ++k) {
-        b.lists[0][k] = lists[0][k];
-        b.lists[1][k] = lists[1][k];
-    }
-    b.build(0, static_cast<uint32_t>(n), 0u, 0);
     if (phases) phases->splits = clock->lap();
     return bvh;
 }
@@ -415,8 +418,8 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
         lent, &accel.phases, &clock);
     // vertices in leaf order (made anew in the lent memory): a gather by id, its addresses
     // asked for ahead (the triangle's indices 64 triangles ahead, its vertices 32 ahead, whose
-    // indices are then in cache). Far enough ahead for memory, not only the last-level cache:
-    // from about 1M triangles the mesh no longer fits that cache (docs/performance.md).
+    // indices are then in cache): far enough to cover a miss to memory, not only to the
+    // last-level cache (docs/performance.md, "How the build works": faster at 400k and 1.6M).
     const uint32_t* ids = accel.bvh.prim_ids.data();
     constexpr size_t tri_ahead = 64, vert_ahead = 32;
     for (size_t k = 0; k < n; ++k) {

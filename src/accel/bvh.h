@@ -70,7 +70,7 @@ struct TriangleVerts {
 struct BuildPhases {
     double centroids = 0.0;  ///< the arrays made, each triangle's centroid (O(n))
     double sorts = 0.0;      ///< the three radix sorts of the centroids (O(n))
-    double splits = 0.0;     ///< the median splits, level by level (O(n log n))
+    double splits = 0.0;     ///< the median splits, level by level (O(n log n)), temporaries freed
     double vertices = 0.0;   ///< the vertices gathered in leaf order (O(n))
     double boxes = 0.0;      ///< the node bounds, bottom up (O(n))
 };
