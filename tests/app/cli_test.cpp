@@ -85,14 +85,19 @@ TEST(Cli, MalformedSceneNamesFileAndPath) {
     EXPECT_NE(r.err.find("$.objects[0].material"), std::string::npos) << r.err;
 }
 
+/// A scene file `name` of one mesh object read from `obj`, seen by an 8x8 camera.
+std::string mesh_scene(const std::string& name, const std::string& obj) {
+    return temp_file(
+        name,
+        R"({"camera": {"position": [0,0,-2], "look_at": [0,0,0], "fov_deg": 60, "resolution": [8,8]},
+            "objects": [{"shape": "mesh", "file": ")" +
+            obj + R"("}]})");
+}
+
 TEST(Cli, MalformedModelNamesFileAndLine) {
     const std::string obj =
         temp_file("raylane_bad_model.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-    const std::string scene = temp_file(
-        "raylane_bad_model_scene.json",
-        R"({"camera": {"position": [0,0,0], "look_at": [0,0,1], "fov_deg": 60, "resolution": [8,8]},
-            "objects": [{"shape": "mesh", "file": ")" +
-            obj + R"("}]})");
+    const std::string scene = mesh_scene("raylane_bad_model_scene.json", obj);
     const CliRun r = run("info " + scene);
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(lines(r.err), 1u) << r.err;
@@ -102,11 +107,7 @@ TEST(Cli, MalformedModelNamesFileAndLine) {
 TEST(Cli, InfoPrintsTheMeshBuildsPhasesForTheMedianSplitOnly) {
     const std::string obj = temp_file("raylane_info_phases.obj",
                                       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
-    const std::string scene = temp_file(
-        "raylane_info_phases_scene.json",
-        R"({"camera": {"position": [0,0,-2], "look_at": [0,0,0], "fov_deg": 60, "resolution": [8,8]},
-            "objects": [{"shape": "mesh", "file": ")" +
-            obj + R"("}]})");
+    const std::string scene = mesh_scene("raylane_info_phases_scene.json", obj);
     const CliRun median = run("info " + scene);
     EXPECT_EQ(median.code, 0) << median.err;
     const size_t line = median.out.find("mesh builds: centroids ");
