@@ -13,6 +13,12 @@
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
+// GCC 12's AVX-512 headers start many intrinsics from _mm512_undefined_epi32(), which its
+// -Wmaybe-uninitialized then reports inside the header
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#endif
 #endif
 
 #include "accel/bvh.h"
@@ -91,6 +97,16 @@ uint32_t order_key(float f) {
     return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
 }
 
+#if defined(__AVX512F__)
+/// order_key of sixteen floats.
+__m512i order_keys(__m512 f) {
+    const __m512i bits = _mm512_castps_si512(f);
+    const __mmask16 negative = _mm512_cmplt_epi32_mask(bits, _mm512_setzero_si512());
+    return _mm512_xor_si512(bits, _mm512_mask_mov_epi32(_mm512_set1_epi32(int(0x80000000u)),
+                                                        negative, _mm512_set1_epi32(-1)));
+}
+#endif
+
 /// Sorts the ids 0 .. n-1 by order_key(values[id]), stably (equal keys in id order), into
 /// `out`: LSD radix sort of (key << 32 | id) items in passes of `digit_bits` bits, skipping the
 /// digits every key shares. Wide digits make fewer passes; narrow ones keep the histograms
@@ -154,6 +170,13 @@ void sort_ids_by_key(const float* values, size_t n, uint32_t* out, uint64_t* ite
     }
 }
 
+/// Aabb::longest_axis of the extents without branches (the axis is unpredictable):
+/// (x >= y && x >= z) ? 0 : (y >= z ? 1 : 2).
+int longest_axis(const float extent[3]) {
+    const unsigned x_wins = unsigned(extent[0] >= extent[1]) & unsigned(extent[0] >= extent[2]);
+    return int((x_wins ^ 1u) * (2u - unsigned(extent[1] >= extent[2])));
+}
+
 /// The build keeps the primitive ids of every node sorted three times, once per axis by
 /// centroid (three lists, the same ids in each node's range). The median along any axis is
 /// then the middle of that axis's list, and the centroid bounds are the ends of the three
@@ -167,9 +190,10 @@ struct Builder {
     const float* centroid2[3];  ///< per axis, by id: lo + hi (twice the centroid)
     uint8_t* side;              ///< by id, three bytes of padding for 32-bit gathers
     uint32_t* lists[2][3];      ///< lists[b][k]: buffer b of the axis-k list
-    uint32_t* prim_ids;
+    uint32_t* prim_ids;         ///< the subtree's part of the tree's prim_ids
     std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes;
     uint32_t max_leaf;
+    uint32_t leaf_base;  ///< the subtree's first position in the tree's prim_ids
 
     /// Stable partition of in[begin, end) into out: ids whose side stamp differs from `stamp`
     /// first (from out + begin), the others from out + mid.
@@ -222,7 +246,7 @@ struct Builder {
         if (count <= max_leaf) {
             // leaf: its primitives in the order along x
             std::memcpy(prim_ids + begin, cur[0] + begin, count * sizeof(uint32_t));
-            nodes[node_index].index = begin;
+            nodes[node_index].index = leaf_base + begin;
             nodes[node_index].count = static_cast<uint16_t>(count);
             return;
         }
@@ -230,10 +254,7 @@ struct Builder {
         float extent[3];
         for (int k = 0; k < 3; ++k)
             extent[k] = centroid2[k][cur[k][end - 1]] - centroid2[k][cur[k][begin]];
-        // Aabb::longest_axis without branches (the axis is unpredictable):
-        // (x >= y && x >= z) ? 0 : (y >= z ? 1 : 2)
-        const unsigned x_wins = unsigned(extent[0] >= extent[1]) & unsigned(extent[0] >= extent[2]);
-        const int axis = int((x_wins ^ 1u) * (2u - unsigned(extent[1] >= extent[2])));
+        const int axis = longest_axis(extent);
         const uint32_t mid = begin + count / 2;
         nodes[node_index].axis = static_cast<uint16_t>(axis);
         const bool leaf_children = count <= 2 * max_leaf;
@@ -262,9 +283,9 @@ struct Builder {
         }
         nodes.resize(nodes.size() + 2, BvhNode{});
         BvhNode* leaves = nodes.data() + node_index + 1;
-        leaves[0].index = begin;
+        leaves[0].index = leaf_base + begin;
         leaves[0].count = static_cast<uint16_t>(mid - begin);
-        leaves[1].index = mid;
+        leaves[1].index = leaf_base + mid;
         leaves[1].count = static_cast<uint16_t>(end - mid);
         nodes[node_index].index = node_index + 2;
     }
@@ -306,16 +327,309 @@ class PhaseClock {
     std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+/// The float whose order_key is `key`.
+float key_value(uint32_t key) {
+    return std::bit_cast<float>((key & 0x80000000u) ? (key & 0x7fffffffu) : ~key);
+}
+
+/// Where a build puts the tree (nodes appended in depth-first order, primitive ids by leaf
+/// position) and, when asked for, its phases' times.
+struct TreeOut {
+    std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes;
+    uint32_t* prim_ids;
+    uint32_t max_leaf;
+    BuildPhases* phases;  ///< null, or given with clock
+    PhaseClock* clock;
+
+    /// Adds the time since the last lap to the phase.
+    void lap(double BuildPhases::*phase) const {
+        if (phases) phases->*phase += clock->lap();
+    }
+};
+
+/// A subtree build's temporaries: both buffers of the three axis lists, and the radix sort's
+/// items and scratch (the items' memory holds the side stamps after the sorts).
+struct SubtreeMemory {
+    uint32_t* lists[2][3];
+    uint64_t* items;
+    uint64_t* scratch;
+};
+
+/// The median-split subtree of m >= 1 primitives whose doubled centroids are c2[k][0 .. m-1]:
+/// three radix sorts, then Builder. Its nodes are appended to out.nodes and its primitives
+/// written to out.prim_ids[base .. base + m): ids[i] is the tree's id of primitive i (ids in
+/// increasing order, so that ties break as in the whole tree's order), or i itself when `ids`
+/// is null.
+void build_subtree(const float* const* c2, uint32_t m, uint32_t base, const uint32_t* ids,
+                   const SubtreeMemory& mem, const TreeOut& out) {
+    for (int k = 0; k < 3; ++k) {
+        if (m >= (1u << 16))
+            sort_ids_by_key<16>(c2[k], m, mem.lists[0][k], mem.items, mem.scratch);
+        else
+            sort_ids_by_key<8>(c2[k], m, mem.lists[0][k], mem.items, mem.scratch);
+    }
+    out.lap(&BuildPhases::sorts);
+    // the sort's items are done with: their memory holds the side stamps
+    uint8_t* side = reinterpret_cast<uint8_t*>(mem.items);  // three bytes of padding for gathers
+    std::memset(side, 0, size_t(m) + 3);                    // stamp 0: no node yet
+    Builder b{{c2[0], c2[1], c2[2]}, side, {}, out.prim_ids + base, out.nodes, out.max_leaf, base};
+    for (int k = 0; k < 3; ++k) {
+        b.lists[0][k] = mem.lists[0][k];
+        b.lists[1][k] = mem.lists[1][k];
+    }
+    b.build(0, m, 0u, 0);
+    if (ids)
+        for (uint32_t i = base; i < base + m; ++i) out.prim_ids[i] = ids[out.prim_ids[i]];
+    out.lap(&BuildPhases::splits);
+}
+
+/// The primitives of the nodes too large for a subtree build, in one of two buffers: the tree's
+/// ids, increasing within a node, and their doubled centroids. A node's primitives sit at its
+/// range of prim_ids.
+struct TopArrays {
+    uint32_t* ids;
+    float* c2[3];
+};
+
+/// The smallest and largest order_key of a node's centroids on each axis.
+struct KeyBounds {
+    uint32_t lo[3] = {~0u, ~0u, ~0u};
+    uint32_t hi[3] = {0, 0, 0};
+};
+
+KeyBounds key_bounds(const TopArrays& a, uint32_t begin, uint32_t end) {
+    KeyBounds b;
+    for (int k = 0; k < 3; ++k) {
+        const float* c = a.c2[k];
+        uint32_t i = begin;
+#if defined(__AVX512F__)
+        __m512i lo = _mm512_set1_epi32(-1), hi = _mm512_setzero_si512();
+        for (; i + 16 <= end; i += 16) {
+            const __m512i key = order_keys(_mm512_loadu_ps(c + i));
+            lo = _mm512_min_epu32(lo, key);
+            hi = _mm512_max_epu32(hi, key);
+        }
+        // (not _mm512_reduce_min_epu32: GCC 12's header warns of an uninitialised variable)
+        alignas(64) uint32_t los[16], his[16];
+        _mm512_store_si512(los, lo);
+        _mm512_store_si512(his, hi);
+        for (int j = 0; j < 16; ++j) {
+            b.lo[k] = std::min(b.lo[k], los[j]);
+            b.hi[k] = std::max(b.hi[k], his[j]);
+        }
+#endif
+        for (; i < end; ++i) {
+            const uint32_t key = order_key(c[i]);
+            b.lo[k] = std::min(b.lo[k], key);
+            b.hi[k] = std::max(b.hi[k], key);
+        }
+    }
+    return b;
+}
+
+/// The split key and tie count of a top node: its first child gets the `left` smallest keys of
+/// c[begin, end), of equal keys the first ids, that is the keys below `key` and the first `ties`
+/// equal to it. The keys between two keys of an even sample that bracket the median (all keys,
+/// in a node of fewer than 65,536) are gathered into `scratch` as (key, position) items and the
+/// median is found among them with std::nth_element; when they are too many or the median is
+/// outside, a radix select (the 16 high bits' histogram, then the low bits' of the median's
+/// bucket).
+struct SplitKey {
+    uint32_t key, ties;
+};
+
+SplitKey select_split(const float* c, uint32_t begin, uint32_t end, uint32_t left,
+                      uint32_t* histogram, uint64_t* scratch, uint32_t scratch_size) {
+    const uint32_t count = end - begin;
+    constexpr uint32_t samples = 4096, margin = 128;
+    uint32_t lo = 0, hi = ~0u;  // a node of fewer than 65,536 has all its keys gathered
+    if (count >= 16 * samples) {
+        // the keys of an even sample bracket the median's
+        uint32_t* sample = histogram;
+        const uint32_t step = count / samples;
+        for (uint32_t j = 0; j < samples; ++j) sample[j] = order_key(c[begin + j * step]);
+        std::sort(sample, sample + samples);
+        const uint32_t at = uint32_t(uint64_t(left) * samples / count);
+        lo = sample[std::max(at, margin) - margin];
+        hi = sample[std::min(at + margin, samples - 1)];
+    }
+    {
+        // the keys within the bracket are gathered with their positions, and the median found
+        // among them
+        uint32_t below = 0, m = 0, i = begin;
+        bool fits = true;
+#if defined(__AVX512F__)
+        // sixteen at a time; the few keys within the bracket as (key, position) items
+        const __m512i lo16 = _mm512_set1_epi32(int(lo)), hi16 = _mm512_set1_epi32(int(hi));
+        const __m512i lane = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
+        for (; i + 16 <= end; i += 16) {
+            const __m512i key = order_keys(_mm512_loadu_ps(c + i));
+            below += uint32_t(std::popcount(unsigned(_mm512_cmplt_epu32_mask(key, lo16))));
+            const __mmask16 in =
+                _mm512_mask_cmple_epu32_mask(_mm512_cmpge_epu32_mask(key, lo16), key, hi16);
+            if (!in) continue;
+            if (m + 16 > scratch_size) {
+                fits = false;
+                break;
+            }
+            for (int half = 0; half < 2; ++half) {
+                const __m256i keys8 =
+                    half ? _mm512_extracti64x4_epi64(key, 1) : _mm512_castsi512_si256(key);
+                const __m512i items = _mm512_or_si512(
+                    _mm512_slli_epi64(_mm512_cvtepu32_epi64(keys8), 32),
+                    _mm512_add_epi64(_mm512_set1_epi64(int64_t(i) + 8 * half), lane));
+                const __mmask8 take = __mmask8(in >> (8 * half));
+                const uint32_t t = uint32_t(std::popcount(unsigned(take)));
+                _mm512_mask_storeu_epi64(scratch + m, __mmask8((1u << t) - 1u),
+                                         _mm512_maskz_compress_epi64(take, items));
+                m += t;
+            }
+        }
+#endif
+        for (; fits && i < end; ++i) {
+            const uint32_t key = order_key(c[i]);
+            below += key < lo;
+            if (key >= lo && key <= hi) {
+                if (m == scratch_size) {
+                    fits = false;
+                    break;
+                }
+                scratch[m++] = uint64_t(key) << 32 | i;
+            }
+        }
+        if (fits && below <= left && left < below + m) {
+            uint64_t* median = scratch + (left - below);
+            std::nth_element(scratch, median, scratch + m);
+            const uint32_t key = uint32_t(*median >> 32);
+            // the keys below it: those below the bracket and those of the nth_element's first part
+            for (const uint64_t* p = scratch; p != median; ++p) below += uint32_t(*p >> 32) < key;
+            return {key, left - below};
+        }
+    }
+    // too many keys in the bracket, or the median outside it: a radix select: the 16 high bits'
+    // histogram, then the low bits' of the median's bucket
+    std::fill_n(histogram, 1u << 16, 0u);
+    for (uint32_t i = begin; i < end; ++i) ++histogram[order_key(c[i]) >> 16];
+    uint32_t below = 0, high = 0;
+    while (below + histogram[high] <= left) below += histogram[high++];
+    std::fill_n(histogram, 1u << 16, 0u);
+    for (uint32_t i = begin; i < end; ++i) {
+        const uint32_t key = order_key(c[i]);
+        if ((key >> 16) == high) ++histogram[key & 0xffffu];
+    }
+    uint32_t low = 0;
+    while (below + histogram[low] <= left) below += histogram[low++];
+    return {high << 16 | low, left - below};
+}
+
+/// Stable partition of a top node's ids and centroids, cur[begin, end), into other: the keys
+/// on `axis` below s.key and the first s.ties equal to it from begin, the rest from mid.
+void partition_top(const TopArrays& cur, const TopArrays& other, uint32_t begin, uint32_t mid,
+                   uint32_t end, int axis, SplitKey s) {
+    const float* c = cur.c2[axis];
+    uint32_t l = begin, r = mid, i = begin;
+#if defined(__AVX512F__)
+    // sixteen at a time: each side's ids and centroids compressed together and stored with a
+    // mask (no write past a side's end)
+    const __m512i split = _mm512_set1_epi32(int(s.key));
+    const __m512i lane = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+    const uint32_t* from[4] = {cur.ids, reinterpret_cast<const uint32_t*>(cur.c2[0]),
+                               reinterpret_cast<const uint32_t*>(cur.c2[1]),
+                               reinterpret_cast<const uint32_t*>(cur.c2[2])};
+    uint32_t* to[4] = {other.ids, reinterpret_cast<uint32_t*>(other.c2[0]),
+                       reinterpret_cast<uint32_t*>(other.c2[1]),
+                       reinterpret_cast<uint32_t*>(other.c2[2])};
+    for (; i < end; i += 16) {
+        const uint32_t n = std::min(end - i, 16u);
+        const __mmask16 valid = __mmask16((1u << n) - 1u);
+        const __m512i key = order_keys(_mm512_maskz_loadu_ps(valid, c + i));
+        const __mmask16 below = _mm512_mask_cmplt_epu32_mask(valid, key, split);
+        uint32_t taken = _mm512_mask_cmpeq_epi32_mask(valid, key, split);
+        if (uint32_t(std::popcount(taken)) > s.ties)  // the first s.ties of the equal keys
+            taken = _pdep_u32((1u << s.ties) - 1u, taken);
+        s.ties -= uint32_t(std::popcount(taken));
+        const __mmask16 go_left = __mmask16(below | taken);
+        const __mmask16 go_right = __mmask16(valid & ~go_left);
+        const uint32_t nl = uint32_t(std::popcount(unsigned(go_left))), nr = n - nl;
+        const __mmask16 store_l = __mmask16((1u << nl) - 1u), store_r = __mmask16((1u << nr) - 1u);
+        for (int a = 0; a < 4; ++a) {
+            const __m512i v = a == 0 && !cur.ids ? _mm512_add_epi32(_mm512_set1_epi32(int(i)), lane)
+                                                 : _mm512_maskz_loadu_epi32(valid, from[a] + i);
+            _mm512_mask_storeu_epi32(to[a] + l, store_l, _mm512_maskz_compress_epi32(go_left, v));
+            _mm512_mask_storeu_epi32(to[a] + r, store_r, _mm512_maskz_compress_epi32(go_right, v));
+        }
+        l += nl;
+        r += nr;
+    }
+#endif
+    // branch free (the side is unpredictable)
+    for (; i < end; ++i) {
+        const uint32_t key = order_key(c[i]);
+        const uint32_t equal = key == s.key;
+        const uint32_t go_left = uint32_t(key < s.key) | (equal & uint32_t(s.ties != 0));
+        s.ties -= equal & go_left;
+        const uint32_t at = r ^ ((l ^ r) & (0u - go_left));
+        other.ids[at] = cur.ids ? cur.ids[i] : i;
+        for (int k = 0; k < 3; ++k) other.c2[k][at] = cur.c2[k][i];
+        l += go_left;
+        r += go_left ^ 1u;
+    }
+    assert(l == mid && r == end);
+}
+
+/// The nodes of more than `subtree_limit` primitives, split one at a time without sorted lists:
+/// the split key by select_split on the longest axis of the key bounds, and partition_top into
+/// the other buffer. Each child of at most subtree_limit primitives becomes a subtree build on
+/// its own compact arrays, which stay in the cache where the whole tree's lists would not
+/// (docs/performance.md, "How the build works"). The same tree as one subtree build over all the
+/// primitives.
+struct TopSplitter {
+    const TreeOut& out;
+    const SubtreeMemory& mem;
+    uint32_t subtree_limit;
+    uint32_t* histogram;  ///< 65,536 counts
+    uint32_t* root_ids;   ///< the ids of the root's buffer, whose root has null ids (positions)
+
+    /// The subtree of the node cur[begin, end).
+    void build(uint32_t begin, uint32_t end, const TopArrays& cur, const TopArrays& other) const {
+        const uint32_t count = end - begin;
+        if (count <= subtree_limit) {
+            const float* c2[3] = {cur.c2[0] + begin, cur.c2[1] + begin, cur.c2[2] + begin};
+            build_subtree(c2, count, begin, cur.ids + begin, mem, out);
+            return;
+        }
+        const uint32_t node_index = static_cast<uint32_t>(out.nodes.size());
+        out.nodes.push_back(BvhNode{});
+        const KeyBounds bounds = key_bounds(cur, begin, end);
+        float extent[3];
+        for (int k = 0; k < 3; ++k) extent[k] = key_value(bounds.hi[k]) - key_value(bounds.lo[k]);
+        const int axis = longest_axis(extent);
+        out.nodes[node_index].axis = static_cast<uint16_t>(axis);
+        const uint32_t mid = begin + count / 2;
+        const SplitKey split =
+            select_split(cur.c2[axis], begin, end, count / 2, histogram, mem.items, subtree_limit);
+        partition_top(cur, other, begin, mid, end, axis, split);
+        out.lap(&BuildPhases::splits);
+        const TopArrays spare{cur.ids ? cur.ids : root_ids, {cur.c2[0], cur.c2[1], cur.c2[2]}};
+        build(begin, mid, other, spare);  // the first child follows its parent
+        out.nodes[node_index].index = static_cast<uint32_t>(out.nodes.size());
+        build(mid, end, other, spare);
+    }
+};
+
 /// The median-split tree over n >= 1 primitives, without node bounds (finish_nodes sets them):
 /// nodes and prim_ids. fill(c2) writes twice every primitive's centroid (its box's lo + hi) to
 /// c2[0..2][0 .. n-1], one array per axis.
 ///
-/// Memory: nine arrays of n 4-byte values (the centroids and both buffers of the three axis
-/// lists) and a block of 16 bytes per primitive for the radix sort's items, reused for the side
-/// stamps after the sorts. The nine arrays are taken from `lent` when the caller lends 36n bytes
-/// it will overwrite afterwards (build_mesh_accel lends the triangle-vertex array it fills
-/// next), else from the block: fresh pages cost about 1.4 us each on this VM. `phases`, when
-/// given, gets the times of the centroids, the sorts and the splits, measured from `clock`.
+/// Up to params.median_subtree primitives, one subtree build. Its memory: nine arrays of n
+/// 4-byte values (the centroids and both buffers of the three axis lists) and a block of 16
+/// bytes per primitive for the radix sort's items, reused for the side stamps after the sorts.
+/// Above, TopSplitter: two buffers of n ids and centroids (eight arrays), and the subtree
+/// builds' lists and items for median_subtree primitives. The arrays of n are taken from `lent`
+/// when the caller lends 36n bytes it will overwrite afterwards (build_mesh_accel lends the
+/// triangle-vertex array it fills next), else from the block: fresh pages cost about 1.4 us each
+/// on this VM. `phases`, when given, gets the times of the centroids, the sorts and the splits,
+/// measured from `clock`.
 template <class FillCentroids>
 Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
                 std::byte* lent = nullptr, BuildPhases* phases = nullptr,
@@ -328,45 +642,54 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
     bvh.nodes.reserve(4 * n / max_leaf + 1);
 
     assert(!phases == !clock);
-    {  // the temporaries' scope: freeing them is part of the splits' time
+    const TreeOut out{bvh.nodes, bvh.prim_ids.data(), max_leaf, phases, clock};
+    const size_t limit = std::max<size_t>(params.median_subtree, max_leaf);  // a leaf is a subtree
+    if (n <= limit) {  // the temporaries' scope: freeing them is part of the splits' time
         TempBlock block((lent ? 0 : 9 * TempBlock::bytes_for<uint32_t>(n)) +
                         2 * TempBlock::bytes_for<uint64_t>(n));
         // the nine arrays in the lent memory or the block
         std::byte* nine = lent ? lent : reinterpret_cast<std::byte*>(block.take<uint32_t>(9 * n));
         float* centroid2[3];
-        uint32_t* lists[2][3];
+        SubtreeMemory mem{};
         for (size_t k = 0; k < 3; ++k) {
             centroid2[k] = begin_array<float>(nine + 4 * n * k, n);
-            lists[0][k] = begin_array<uint32_t>(nine + 4 * n * (3 + k), n);
-            lists[1][k] = begin_array<uint32_t>(nine + 4 * n * (6 + k), n);
+            mem.lists[0][k] = begin_array<uint32_t>(nine + 4 * n * (3 + k), n);
+            mem.lists[1][k] = begin_array<uint32_t>(nine + 4 * n * (6 + k), n);
         }
         fill(centroid2);
-        if (phases) phases->centroids = clock->lap();
-        uint64_t* items = block.take<uint64_t>(n);
-        uint64_t* scratch = block.take<uint64_t>(n);
-        for (int k = 0; k < 3; ++k) {
-            if (n >= (size_t(1) << 16))
-                sort_ids_by_key<16>(centroid2[k], n, lists[0][k], items, scratch);
-            else
-                sort_ids_by_key<8>(centroid2[k], n, lists[0][k], items, scratch);
+        out.lap(&BuildPhases::centroids);
+        mem.items = block.take<uint64_t>(n);
+        mem.scratch = block.take<uint64_t>(n);
+        build_subtree(centroid2, static_cast<uint32_t>(n), 0, nullptr, mem, out);
+    } else {
+        TempBlock block((lent ? 0 : 8 * TempBlock::bytes_for<uint32_t>(n)) +
+                        6 * TempBlock::bytes_for<uint32_t>(limit) +
+                        TempBlock::bytes_for<uint64_t>(std::max<size_t>(limit, 1u << 16)) +
+                        TempBlock::bytes_for<uint64_t>(limit) +
+                        TempBlock::bytes_for<uint32_t>(size_t(1) << 16));
+        // the two buffers' eight arrays in the lent memory or the block
+        std::byte* eight = lent ? lent : reinterpret_cast<std::byte*>(block.take<uint32_t>(8 * n));
+        TopArrays buffers[2];
+        for (size_t b = 0; b < 2; ++b) {
+            buffers[b].ids = begin_array<uint32_t>(eight + 4 * n * (4 * b), n);
+            for (size_t k = 0; k < 3; ++k)
+                buffers[b].c2[k] = begin_array<float>(eight + 4 * n * (4 * b + 1 + k), n);
         }
-        if (phases) phases->sorts = clock->lap();
-        // the sort's items are done with: their memory holds the side stamps
-        uint8_t* side = reinterpret_cast<uint8_t*>(items);  // three bytes of padding for gathers
-        std::memset(side, 0, n + 3);                        // stamp 0: no node yet
-        Builder b{{centroid2[0], centroid2[1], centroid2[2]},
-                  side,
-                  {},
-                  bvh.prim_ids.data(),
-                  bvh.nodes,
-                  max_leaf};
-        for (int k = 0; k < 3; ++k) {
-            b.lists[0][k] = lists[0][k];
-            b.lists[1][k] = lists[1][k];
-        }
-        b.build(0, static_cast<uint32_t>(n), 0u, 0);
+        fill(buffers[0].c2);
+        out.lap(&BuildPhases::centroids);
+        SubtreeMemory mem{};
+        for (int b = 0; b < 2; ++b)
+            for (int k = 0; k < 3; ++k) mem.lists[b][k] = block.take<uint32_t>(limit);
+        // the items also hold select_split's keys, all of them in a node of fewer than 65,536
+        mem.items = block.take<uint64_t>(std::max<size_t>(limit, 1u << 16));
+        mem.scratch = block.take<uint64_t>(limit);
+        const TopSplitter top{out, mem, static_cast<uint32_t>(limit),
+                              block.take<uint32_t>(size_t(1) << 16), buffers[0].ids};
+        // the root's ids are its positions: not written, read as such
+        const TopArrays root{nullptr, {buffers[0].c2[0], buffers[0].c2[1], buffers[0].c2[2]}};
+        top.build(0, static_cast<uint32_t>(n), root, buffers[1]);
     }
-    if (phases) phases->splits = clock->lap();
+    out.lap(&BuildPhases::splits);
     return bvh;
 }
 

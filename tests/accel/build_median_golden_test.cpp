@@ -86,11 +86,15 @@ std::vector<Aabb> tied_boxes(size_t n, uint32_t seed) {
     return boxes;
 }
 
-void expect_same_as_reference(std::span<const Aabb> boxes, int leaf, const std::string& what) {
-    const Bvh got = build_bvh_median(boxes, BuildParams{leaf});
+void expect_same_as_reference(std::span<const Aabb> boxes, int leaf, const std::string& what,
+                              uint32_t subtree = BuildParams{}.median_subtree) {
+    const Bvh got =
+        build_bvh_median(boxes, BuildParams{.max_leaf_size = leaf, .median_subtree = subtree});
     const Bvh want = test::MedianReference::build(boxes, leaf);
-    EXPECT_EQ(first_difference(got, want), "") << what << " leaf=" << leaf;
-    EXPECT_EQ(check_bvh(got, boxes, leaf), "") << what << " leaf=" << leaf;
+    EXPECT_EQ(first_difference(got, want), "")
+        << what << " leaf=" << leaf << " subtree=" << subtree;
+    EXPECT_EQ(check_bvh(got, boxes, leaf), "")
+        << what << " leaf=" << leaf << " subtree=" << subtree;
 }
 
 TEST(Sha256, MatchesTheFips180Examples) {
@@ -154,6 +158,47 @@ TEST(BuildMedianGolden, RandomBoxesGiveTheReferenceTreeAndTheRecordedOne) {
                   "0f1d9a55db43458c2fc94497cb4eefcf3435bb55fd7ee4c8708e9cfbafc45417");
         EXPECT_EQ(digest(got), "1c7442c40a04d837c14384d58523a78c0a726547a54507491409df3e1009e726");
     }
+}
+
+TEST(BuildMedianGolden, NodesSplitAboveTheSubtreeSizeGiveTheReferenceTree) {
+    // every subtree size from one primitive (every node split on its own) up, on boxes with
+    // distinct, tied, equal and extreme centroids
+    std::vector<Aabb> extremes = random_boxes(3000, 8);
+    for (size_t i = 0; i < extremes.size(); i += 7) extremes[i].lo.y = extremes[i].hi.y = -3e38f;
+    for (size_t i = 3; i < extremes.size(); i += 11) extremes[i].hi.z = infinity;
+    for (size_t i = 5; i < extremes.size(); i += 13) extremes[i].lo.x = extremes[i].hi.x = 1e-40f;
+    const std::pair<std::string, std::vector<Aabb>> sets[] = {
+        {"random", random_boxes(5000, 3)},
+        {"tied", tied_boxes(5000, 4)},
+        {"equal", std::vector<Aabb>(2000, Aabb{vec3(-1.0f), vec3(1.0f)})},
+        {"extremes", extremes}};
+    for (const auto& [what, boxes] : sets)
+        for (uint32_t subtree : {1u, 3u, 100u, 1500u})
+            for (int leaf : {1, 4, 6}) expect_same_as_reference(boxes, leaf, what, subtree);
+}
+
+TEST(BuildMedianGolden, NodesOf65536OrMoreSplitAboveTheSubtreeSizeGiveTheReferenceTree) {
+    // a node of 65,536 or more finds its median among the keys that a sample brackets, or by
+    // a radix select when the bracket holds too many (equal keys) or misses the median (a
+    // sample of every 17th box, each far to the right of the others)
+    const size_t n = 70000;
+    std::vector<Aabb> misleading = random_boxes(n, 6);
+    for (size_t i = 0; i < n; i += n / 4096) misleading[i].lo.x = misleading[i].hi.x = 1e6f;
+    const std::pair<std::string, std::vector<Aabb>> sets[] = {
+        {"random", random_boxes(n, 3)},
+        {"tied", tied_boxes(n, 4)},
+        {"equal", std::vector<Aabb>(n, Aabb{vec3(-1.0f), vec3(1.0f)})},
+        {"misleading sample", misleading}};
+    for (const auto& [what, boxes] : sets) expect_same_as_reference(boxes, 4, what, 30000);
+}
+
+TEST(BuildMedianGolden, MoreThanTheDefaultSubtreeSizeGivesTheReferenceTree) {
+#ifdef RAYLANE_SANITIZED
+    GTEST_SKIP() << "600,000 primitives: release builds only";
+#endif
+    // the default subtree size, passed: the root is split on its own
+    const std::vector<Aabb> boxes = random_boxes(size_t(BuildParams{}.median_subtree) + 75000, 5);
+    expect_same_as_reference(boxes, 4, "random");
 }
 
 TEST(BuildMedianGolden, EverySmallSizeAndLeafSizeGivesTheReferenceTree) {

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 
 #include "accel/bvh.h"
 #include "accel/random_boxes.h"
@@ -115,6 +116,27 @@ TEST(BuildMesh, PhasesAreTimedAndAddUpToNoMoreThanTheBuild) {
     const BuildPhases sah = build_mesh_accel(mesh, BuildParams{.method = BvhBuild::sah}).phases;
     for (double ms : {sah.centroids, sah.sorts, sah.splits, sah.vertices, sah.boxes})
         EXPECT_EQ(ms, 0.0);
+}
+
+TEST(BuildMesh, NodesSplitAboveTheSubtreeSizeGiveTheSameTreeAndVertices) {
+    // the mesh build lends its vertex array to the nodes split on their own as well
+    const Mesh mesh = grid_mesh(100);  // 20,000 triangles
+    const MeshAccel whole = build_mesh_accel(mesh, BuildParams{});
+    for (uint32_t subtree : {1u, 3000u, 15000u}) {
+        const MeshAccel split = build_mesh_accel(mesh, BuildParams{.median_subtree = subtree});
+        ASSERT_EQ(split.bvh.nodes.size(), whole.bvh.nodes.size()) << subtree;
+        EXPECT_EQ(std::memcmp(split.bvh.nodes.data(), whole.bvh.nodes.data(),
+                              whole.bvh.nodes.size() * sizeof(BvhNode)),
+                  0)
+            << subtree;
+        EXPECT_EQ(split.bvh.prim_ids, whole.bvh.prim_ids) << subtree;
+        EXPECT_EQ(std::memcmp(split.verts.data(), whole.verts.data(),
+                              whole.verts.size() * sizeof(TriangleVerts)),
+                  0)
+            << subtree;
+        for (double ms : {split.phases.centroids, split.phases.sorts, split.phases.splits})
+            EXPECT_GT(ms, 0.0) << subtree;
+    }
 }
 
 TEST(CheckBvh, DetectsAPrimitiveInTwoLeaves) {
