@@ -606,8 +606,9 @@ struct TopSplitter {
         const int axis = longest_axis(extent);
         out.nodes[node_index].axis = static_cast<uint16_t>(axis);
         const uint32_t mid = begin + count / 2;
-        const SplitKey split =
-            select_split(cur.c2[axis], begin, end, count / 2, histogram, mem.items, subtree_limit);
+        // mem.items holds max(subtree_limit, 65,536) items (median_tree)
+        const SplitKey split = select_split(cur.c2[axis], begin, end, count / 2, histogram,
+                                            mem.items, std::max(subtree_limit, 1u << 16));
         partition_top(cur, other, begin, mid, end, axis, split);
         out.lap(&BuildPhases::splits);
         const TopArrays spare{cur.ids ? cur.ids : root_ids, {cur.c2[0], cur.c2[1], cur.c2[2]}};
