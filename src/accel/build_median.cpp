@@ -4,12 +4,14 @@
 #include <sys/mman.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cassert>
 #include <chrono>
 #include <cstring>
 #include <memory>
 #include <new>
+#include <optional>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -397,6 +399,20 @@ struct KeyBounds {
     uint32_t hi[3] = {0, 0, 0};
 };
 
+#if defined(__AVX512F__)
+/// Grows the bounds on axis k by sixteen lanes of smallest and largest keys.
+void grow(KeyBounds& b, int k, __m512i lo, __m512i hi) {
+    // (not _mm512_reduce_min_epu32: GCC 12's header warns of an uninitialised variable)
+    alignas(64) uint32_t los[16], his[16];
+    _mm512_store_si512(los, lo);
+    _mm512_store_si512(his, hi);
+    for (int j = 0; j < 16; ++j) {
+        b.lo[k] = std::min(b.lo[k], los[j]);
+        b.hi[k] = std::max(b.hi[k], his[j]);
+    }
+}
+#endif
+
 KeyBounds key_bounds(const TopArrays& a, uint32_t begin, uint32_t end) {
     KeyBounds b;
     for (int k = 0; k < 3; ++k) {
@@ -409,14 +425,7 @@ KeyBounds key_bounds(const TopArrays& a, uint32_t begin, uint32_t end) {
             lo = _mm512_min_epu32(lo, key);
             hi = _mm512_max_epu32(hi, key);
         }
-        // (not _mm512_reduce_min_epu32: GCC 12's header warns of an uninitialised variable)
-        alignas(64) uint32_t los[16], his[16];
-        _mm512_store_si512(los, lo);
-        _mm512_store_si512(his, hi);
-        for (int j = 0; j < 16; ++j) {
-            b.lo[k] = std::min(b.lo[k], los[j]);
-            b.hi[k] = std::max(b.hi[k], his[j]);
-        }
+        grow(b, k, lo, hi);
 #endif
         for (; i < end; ++i) {
             const uint32_t key = order_key(c[i]);
@@ -427,87 +436,154 @@ KeyBounds key_bounds(const TopArrays& a, uint32_t begin, uint32_t end) {
     return b;
 }
 
+/// The longest axis of the key bounds' extents (as the centroids' extents).
+int longest_axis(const KeyBounds& b) {
+    float extent[3];
+    for (int k = 0; k < 3; ++k) extent[k] = key_value(b.hi[k]) - key_value(b.lo[k]);
+    return longest_axis(extent);
+}
+
+/// Copies primitive i of a top buffer to position `at` of another.
+void copy_primitive(const TopArrays& from, uint32_t i, const TopArrays& to, uint32_t at) {
+    to.ids[at] = from.ids ? from.ids[i] : i;
+    for (int k = 0; k < 3; ++k) to.c2[k][at] = from.c2[k][i];
+}
+
+#if defined(__AVX512F__)
+/// Moves the primitives i .. i + 15 of `from` that `valid` holds to `to`: those of each group
+/// go[g] compressed together and stored from *at[g] with a mask (no write past the group's
+/// end), which then advances.
+void store_compressed(const TopArrays& from, const TopArrays& to, uint32_t i, __mmask16 valid,
+                      const __mmask16* go, uint32_t* const* at, int groups) {
+    const __m512i lane = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+    __m512i v[4];
+    v[0] = from.ids ? _mm512_maskz_loadu_epi32(valid, from.ids + i)
+                    : _mm512_add_epi32(_mm512_set1_epi32(int(i)), lane);
+    for (int k = 0; k < 3; ++k)
+        v[1 + k] = _mm512_castps_si512(_mm512_maskz_loadu_ps(valid, from.c2[k] + i));
+    uint32_t* dest[4] = {to.ids, reinterpret_cast<uint32_t*>(to.c2[0]),
+                         reinterpret_cast<uint32_t*>(to.c2[1]),
+                         reinterpret_cast<uint32_t*>(to.c2[2])};
+    for (int g = 0; g < groups; ++g) {
+        const uint32_t n = uint32_t(std::popcount(unsigned(go[g])));
+        const __mmask16 store = __mmask16((1u << n) - 1u);
+        for (int a = 0; a < 4; ++a)
+            _mm512_mask_storeu_epi32(dest[a] + *at[g], store,
+                                     _mm512_maskz_compress_epi32(go[g], v[a]));
+        *at[g] += n;
+    }
+}
+#endif
+
 /// The split key and tie count of a top node: its first child gets the `left` smallest keys of
-/// c[begin, end), of equal keys the first ids, that is the keys below `key` and the first `ties`
-/// equal to it. The keys between two keys of an even sample that bracket the median (all keys,
-/// in a node of fewer than 65,536) are gathered into `scratch` as (key, position) items and the
-/// median is found among them with std::nth_element; when they are too many or the median is
-/// outside, a radix select (the 16 high bits' histogram, then the low bits' of the median's
-/// bucket).
+/// its primitives, of equal keys the first ones in order, that is the keys below `key` and the
+/// first `ties` equal to it.
 struct SplitKey {
     uint32_t key, ties;
 };
 
-SplitKey select_split(const float* c, uint32_t begin, uint32_t end, uint32_t left,
-                      uint32_t* histogram, uint64_t* scratch, uint32_t scratch_size) {
-    const uint32_t count = end - begin;
-    constexpr uint32_t samples = 4096, margin = 128;
-    uint32_t lo = 0, hi = ~0u;  // a node of fewer than 65,536 has all its keys gathered
-    if (count >= 16 * samples) {
-        // the keys of an even sample bracket the median's
-        uint32_t* sample = histogram;
-        const uint32_t step = count / samples;
-        for (uint32_t j = 0; j < samples; ++j) sample[j] = order_key(c[begin + j * step]);
-        std::sort(sample, sample + samples);
-        const uint32_t at = uint32_t(uint64_t(left) * samples / count);
-        lo = sample[std::max(at, margin) - margin];
-        hi = sample[std::min(at + margin, samples - 1)];
+/// Which child of a split each primitive of a node goes to, swept in the node's order (the
+/// equal keys' first `ties` go first).
+struct SplitSweep {
+    SplitKey s;
+
+    /// 1 when the primitive of this key goes to the first child.
+    uint32_t first(uint32_t key) {
+        const uint32_t equal = key == s.key;
+        const uint32_t go = uint32_t(key < s.key) | (equal & uint32_t(s.ties != 0));
+        s.ties -= equal & go;
+        return go;
     }
-    {
-        // the keys within the bracket are gathered with their positions, and the median found
-        // among them
-        uint32_t below = 0, m = 0, i = begin;
-        bool fits = true;
 #if defined(__AVX512F__)
-        // sixteen at a time; the few keys within the bracket as (key, position) items
-        const __m512i lo16 = _mm512_set1_epi32(int(lo)), hi16 = _mm512_set1_epi32(int(hi));
-        const __m512i lane = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
-        for (; i + 16 <= end; i += 16) {
-            const __m512i key = order_keys(_mm512_loadu_ps(c + i));
-            below += uint32_t(std::popcount(unsigned(_mm512_cmplt_epu32_mask(key, lo16))));
-            const __mmask16 in =
-                _mm512_mask_cmple_epu32_mask(_mm512_cmpge_epu32_mask(key, lo16), key, hi16);
-            if (!in) continue;
-            if (m + 16 > scratch_size) {
-                fits = false;
-                break;
-            }
-            for (int half = 0; half < 2; ++half) {
-                const __m256i keys8 =
-                    half ? _mm512_extracti64x4_epi64(key, 1) : _mm512_castsi512_si256(key);
-                const __m512i items = _mm512_or_si512(
-                    _mm512_slli_epi64(_mm512_cvtepu32_epi64(keys8), 32),
-                    _mm512_add_epi64(_mm512_set1_epi64(int64_t(i) + 8 * half), lane));
-                const __mmask8 take = __mmask8(in >> (8 * half));
-                const uint32_t t = uint32_t(std::popcount(unsigned(take)));
-                _mm512_mask_storeu_epi64(scratch + m, __mmask8((1u << t) - 1u),
-                                         _mm512_maskz_compress_epi64(take, items));
-                m += t;
-            }
-        }
-#endif
-        for (; fits && i < end; ++i) {
-            const uint32_t key = order_key(c[i]);
-            below += key < lo;
-            if (key >= lo && key <= hi) {
-                if (m == scratch_size) {
-                    fits = false;
-                    break;
-                }
-                scratch[m++] = uint64_t(key) << 32 | i;
-            }
-        }
-        if (fits && below <= left && left < below + m) {
-            uint64_t* median = scratch + (left - below);
-            std::nth_element(scratch, median, scratch + m);
-            const uint32_t key = uint32_t(*median >> 32);
-            // the keys below it: those below the bracket and those of the nth_element's first part
-            for (const uint64_t* p = scratch; p != median; ++p) below += uint32_t(*p >> 32) < key;
-            return {key, left - below};
-        }
+    /// The lanes of `among`, the next primitives in order, that go to the first child.
+    __mmask16 first(__m512i key, __mmask16 among) {
+        const __m512i split = _mm512_set1_epi32(int(s.key));
+        const __mmask16 below = _mm512_mask_cmplt_epu32_mask(among, key, split);
+        uint32_t taken = _mm512_mask_cmpeq_epi32_mask(among, key, split);
+        if (uint32_t(std::popcount(taken)) > s.ties)  // the first s.ties of the equal keys
+            taken = _pdep_u32((1u << s.ties) - 1u, taken);
+        s.ties -= uint32_t(std::popcount(taken));
+        return __mmask16(below | taken);
     }
-    // too many keys in the bracket, or the median outside it: a radix select: the 16 high bits'
-    // histogram, then the low bits' of the median's bucket
+#endif
+};
+
+/// The split key of the `left` smallest keys of a node, from the m items (key << 32 |
+/// position) of the keys within a bracket and the count `below` of the keys under it; nothing
+/// when the bracket does not hold the median. Reorders the items.
+std::optional<SplitKey> median_of_items(uint64_t* items, uint32_t m, uint32_t below,
+                                        uint32_t left) {
+    if (left < below || left >= below + m) return std::nullopt;
+    uint64_t* median = items + (left - below);
+    std::nth_element(items, median, items + m);
+    const uint32_t key = uint32_t(*median >> 32);
+    // the keys below it: those below the bracket and those of the nth_element's first part
+    for (const uint64_t* p = items; p != median; ++p) below += uint32_t(*p >> 32) < key;
+    return SplitKey{key, left - below};
+}
+
+/// A bracket of keys [lo, hi] that holds the `left`-th smallest of `count` keys, from the
+/// sorted keys of an even sample of them: all keys for a node of fewer than 65,536.
+struct Bracket {
+    uint32_t lo = 0, hi = ~0u;
+};
+
+constexpr uint32_t bracket_samples = 4096;
+
+Bracket bracket_of_sample(const uint32_t* sorted, uint32_t samples, uint32_t left, uint32_t count) {
+    constexpr uint32_t margin = 128;
+    if (count < 16 * bracket_samples || samples <= 2 * margin) return {};
+    const uint32_t at = uint32_t(uint64_t(left) * samples / count);
+    return {sorted[std::max(at, margin) - margin], sorted[std::min(at + margin, samples - 1)]};
+}
+
+/// Gathers the keys of a node within a bracket as (key << 32 | position) items, and counts
+/// the keys under it. add() takes the keys in order; false once more than `capacity` would be
+/// gathered.
+struct BracketGather {
+    Bracket b;
+    uint64_t* items;
+    uint32_t capacity;
+    uint32_t m = 0, below = 0;
+
+    bool add(uint32_t key, uint32_t position) {
+        below += key < b.lo;
+        if (key < b.lo || key > b.hi) return true;
+        if (m == capacity) return false;
+        items[m++] = uint64_t(key) << 32 | position;
+        return true;
+    }
+#if defined(__AVX512F__)
+    /// The lanes `among` of sixteen keys at positions first .. first + 15.
+    bool add(__m512i key, __mmask16 among, uint32_t first) {
+        const __m512i lo = _mm512_set1_epi32(int(b.lo)), hi = _mm512_set1_epi32(int(b.hi));
+        below += uint32_t(std::popcount(unsigned(_mm512_mask_cmplt_epu32_mask(among, key, lo))));
+        const __mmask16 in =
+            _mm512_mask_cmple_epu32_mask(_mm512_mask_cmpge_epu32_mask(among, key, lo), key, hi);
+        if (!in) return true;
+        if (m + 16 > capacity) return false;
+        const __m512i lane = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
+        for (int half = 0; half < 2; ++half) {
+            const __m256i keys8 =
+                half ? _mm512_extracti64x4_epi64(key, 1) : _mm512_castsi512_si256(key);
+            const __m512i all = _mm512_or_si512(
+                _mm512_slli_epi64(_mm512_cvtepu32_epi64(keys8), 32),
+                _mm512_add_epi64(_mm512_set1_epi64(int64_t(first) + 8 * half), lane));
+            const __mmask8 take = __mmask8(in >> (8 * half));
+            const uint32_t t = uint32_t(std::popcount(unsigned(take)));
+            _mm512_mask_storeu_epi64(items + m, __mmask8((1u << t) - 1u),
+                                     _mm512_maskz_compress_epi64(take, all));
+            m += t;
+        }
+        return true;
+    }
+#endif
+};
+
+/// select_split's fallback: a radix select, the 16 high bits' histogram, then the low bits'
+/// of the median's bucket.
+SplitKey radix_select(const float* c, uint32_t begin, uint32_t end, uint32_t left,
+                      uint32_t* histogram) {
     std::fill_n(histogram, 1u << 16, 0u);
     for (uint32_t i = begin; i < end; ++i) ++histogram[order_key(c[i]) >> 16];
     uint32_t below = 0, high = 0;
@@ -522,71 +598,215 @@ SplitKey select_split(const float* c, uint32_t begin, uint32_t end, uint32_t lef
     return {high << 16 | low, left - below};
 }
 
-/// Stable partition of a top node's ids and centroids, cur[begin, end), into other: the keys
-/// on `axis` below s.key and the first s.ties equal to it from begin, the rest from mid.
+/// The split of the node c[begin, end) that gives its first child `left` primitives. The keys
+/// between two keys of an even sample that bracket the median (all keys, in a node of fewer
+/// than 65,536) are gathered into `items` and the median found among them; when they are more
+/// than `capacity` or the median is outside, radix_select.
+SplitKey select_split(const float* c, uint32_t begin, uint32_t end, uint32_t left,
+                      uint32_t* histogram, uint64_t* items, uint32_t capacity) {
+    const uint32_t count = end - begin;
+    uint32_t* sample = histogram;
+    const uint32_t samples = count >= 16 * bracket_samples ? bracket_samples : 0;
+    for (uint32_t j = 0; j < samples; ++j)
+        sample[j] = order_key(c[begin + j * (count / bracket_samples)]);
+    std::sort(sample, sample + samples);
+    BracketGather g{bracket_of_sample(sample, samples, left, count), items, capacity};
+    bool fits = true;
+    uint32_t i = begin;
+#if defined(__AVX512F__)
+    for (; fits && i + 16 <= end; i += 16)
+        fits = g.add(order_keys(_mm512_loadu_ps(c + i)), 0xffff, i);
+#endif
+    for (; fits && i < end; ++i) fits = g.add(order_key(c[i]), i);
+    if (fits)
+        if (const auto s = median_of_items(items, g.m, g.below, left)) return *s;
+    return radix_select(c, begin, end, left, histogram);
+}
+
+/// Stable partition of a top node's ids and centroids, cur[begin, end), into other: the
+/// primitives that `split` on `axis` sends to the first child from begin, the rest from mid.
 void partition_top(const TopArrays& cur, const TopArrays& other, uint32_t begin, uint32_t mid,
-                   uint32_t end, int axis, SplitKey s) {
+                   uint32_t end, int axis, SplitKey split) {
     const float* c = cur.c2[axis];
+    SplitSweep sweep{split};
     uint32_t l = begin, r = mid, i = begin;
 #if defined(__AVX512F__)
     // sixteen at a time: each side's ids and centroids compressed together and stored with a
     // mask (no write past a side's end)
-    const __m512i split = _mm512_set1_epi32(int(s.key));
-    const __m512i lane = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
-    const uint32_t* from[4] = {cur.ids, reinterpret_cast<const uint32_t*>(cur.c2[0]),
-                               reinterpret_cast<const uint32_t*>(cur.c2[1]),
-                               reinterpret_cast<const uint32_t*>(cur.c2[2])};
-    uint32_t* to[4] = {other.ids, reinterpret_cast<uint32_t*>(other.c2[0]),
-                       reinterpret_cast<uint32_t*>(other.c2[1]),
-                       reinterpret_cast<uint32_t*>(other.c2[2])};
     for (; i < end; i += 16) {
         const uint32_t n = std::min(end - i, 16u);
         const __mmask16 valid = __mmask16((1u << n) - 1u);
-        const __m512i key = order_keys(_mm512_maskz_loadu_ps(valid, c + i));
-        const __mmask16 below = _mm512_mask_cmplt_epu32_mask(valid, key, split);
-        uint32_t taken = _mm512_mask_cmpeq_epi32_mask(valid, key, split);
-        if (uint32_t(std::popcount(taken)) > s.ties)  // the first s.ties of the equal keys
-            taken = _pdep_u32((1u << s.ties) - 1u, taken);
-        s.ties -= uint32_t(std::popcount(taken));
-        const __mmask16 go_left = __mmask16(below | taken);
-        const __mmask16 go_right = __mmask16(valid & ~go_left);
-        const uint32_t nl = uint32_t(std::popcount(unsigned(go_left))), nr = n - nl;
-        const __mmask16 store_l = __mmask16((1u << nl) - 1u), store_r = __mmask16((1u << nr) - 1u);
-        for (int a = 0; a < 4; ++a) {
-            const __m512i v = a == 0 && !cur.ids ? _mm512_add_epi32(_mm512_set1_epi32(int(i)), lane)
-                                                 : _mm512_maskz_loadu_epi32(valid, from[a] + i);
-            _mm512_mask_storeu_epi32(to[a] + l, store_l, _mm512_maskz_compress_epi32(go_left, v));
-            _mm512_mask_storeu_epi32(to[a] + r, store_r, _mm512_maskz_compress_epi32(go_right, v));
-        }
-        l += nl;
-        r += nr;
+        const __mmask16 go_left =
+            sweep.first(order_keys(_mm512_maskz_loadu_ps(valid, c + i)), valid);
+        const __mmask16 go[2] = {go_left, __mmask16(valid & ~go_left)};
+        uint32_t* at[2] = {&l, &r};
+        store_compressed(cur, other, i, valid, go, at, 2);
     }
 #endif
     // branch free (the side is unpredictable)
     for (; i < end; ++i) {
-        const uint32_t key = order_key(c[i]);
-        const uint32_t equal = key == s.key;
-        const uint32_t go_left = uint32_t(key < s.key) | (equal & uint32_t(s.ties != 0));
-        s.ties -= equal & go_left;
+        const uint32_t go_left = sweep.first(order_key(c[i]));
         const uint32_t at = r ^ ((l ^ r) & (0u - go_left));
-        other.ids[at] = cur.ids ? cur.ids[i] : i;
-        for (int k = 0; k < 3; ++k) other.c2[k][at] = cur.c2[k][i];
+        copy_primitive(cur, i, other, at);
         l += go_left;
         r += go_left ^ 1u;
     }
     assert(l == mid && r == end);
 }
 
-/// The nodes of more than `subtree_limit` primitives, split one at a time without sorted lists:
-/// the split key by select_split on the longest axis of the key bounds, and partition_top into
-/// the other buffer. Each child of at most subtree_limit primitives becomes a subtree build on
-/// its own compact arrays, which stay in the cache where the whole tree's lists would not
-/// (docs/performance.md, "How the build works"). The same tree as one subtree build over all the
-/// primitives.
+/// The key bounds of both children of a top node split by `split` on `axis`, without moving
+/// its primitives.
+std::array<KeyBounds, 2> child_key_bounds(const TopArrays& cur, uint32_t begin, uint32_t end,
+                                          int axis, SplitKey split) {
+    std::array<KeyBounds, 2> b;
+    SplitSweep sweep{split};
+    uint32_t i = begin;
+#if defined(__AVX512F__)
+    __m512i lo[2][3], hi[2][3];
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k) {
+            lo[side][k] = _mm512_set1_epi32(-1);
+            hi[side][k] = _mm512_setzero_si512();
+        }
+    for (; i + 16 <= end; i += 16) {
+        __m512i key[3];
+        for (int k = 0; k < 3; ++k) key[k] = order_keys(_mm512_loadu_ps(cur.c2[k] + i));
+        const __mmask16 go_left = sweep.first(key[axis], 0xffff);
+        const __mmask16 go[2] = {go_left, __mmask16(~go_left)};
+        for (int side = 0; side < 2; ++side)
+            for (int k = 0; k < 3; ++k) {
+                lo[side][k] = _mm512_mask_min_epu32(lo[side][k], go[side], lo[side][k], key[k]);
+                hi[side][k] = _mm512_mask_max_epu32(hi[side][k], go[side], hi[side][k], key[k]);
+            }
+    }
+    for (int side = 0; side < 2; ++side)
+        for (int k = 0; k < 3; ++k) grow(b[side], k, lo[side][k], hi[side][k]);
+#endif
+    for (; i < end; ++i) {
+        uint32_t key[3];
+        for (int k = 0; k < 3; ++k) key[k] = order_key(cur.c2[k][i]);
+        KeyBounds& side = b[sweep.first(key[axis]) ^ 1u];
+        for (int k = 0; k < 3; ++k) {
+            side.lo[k] = std::min(side.lo[k], key[k]);
+            side.hi[k] = std::max(side.hi[k], key[k]);
+        }
+    }
+    return b;
+}
+
+/// The splits of both children of a top node split by `split` on `axis`, each on its own axis
+/// child_axis[side], as select_split would find them once the node is partitioned, but from the
+/// node's unpartitioned primitives: an even sample of the node's keys, each on its side by
+/// key, brackets each child's median, and one sweep gathers both children's keys within their
+/// brackets into items[0 .. capacity) and items[capacity .. 2 capacity). Nothing when a bracket
+/// holds more than `capacity` keys or misses its child's median.
+std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uint32_t begin,
+                                                       uint32_t end, int axis, SplitKey split,
+                                                       const int child_axis[2], uint32_t* sample,
+                                                       uint64_t* items, uint32_t capacity) {
+    const uint32_t count = end - begin;
+    const uint32_t size[2] = {count / 2, count - count / 2};
+    const float* c = cur.c2[axis];
+    const float* child_c[2] = {cur.c2[child_axis[0]], cur.c2[child_axis[1]]};
+    // the sample: 2 bracket_samples primitives of the node, the keys equal to the split skipped
+    // (their side depends on their order)
+    uint32_t* sorted[2] = {sample, sample + 2 * bracket_samples};
+    uint32_t samples[2] = {0, 0};
+    if (count >= 32 * bracket_samples) {
+        const uint32_t step = count / (2 * bracket_samples);
+        for (uint32_t j = 0; j < 2 * bracket_samples; ++j) {
+            const uint32_t p = begin + j * step, key = order_key(c[p]);
+            if (key == split.key) continue;
+            const int side = key < split.key ? 0 : 1;
+            sorted[side][samples[side]++] = order_key(child_c[side][p]);
+        }
+        for (int side = 0; side < 2; ++side) std::sort(sorted[side], sorted[side] + samples[side]);
+    }
+    BracketGather g[2] = {
+        {bracket_of_sample(sorted[0], samples[0], size[0] / 2, size[0]), items, capacity},
+        {bracket_of_sample(sorted[1], samples[1], size[1] / 2, size[1]), items + capacity,
+         capacity}};
+    SplitSweep sweep{split};
+    bool fits = true;
+    uint32_t i = begin;
+#if defined(__AVX512F__)
+    for (; fits && i + 16 <= end; i += 16) {
+        const __m512i key = order_keys(_mm512_loadu_ps(c + i));
+        const __mmask16 go_left = sweep.first(key, 0xffff);
+        __m512i child_key[2];
+        for (int side = 0; side < 2; ++side)
+            child_key[side] =
+                child_axis[side] == axis ? key : order_keys(_mm512_loadu_ps(child_c[side] + i));
+        fits = g[0].add(child_key[0], go_left, i) && g[1].add(child_key[1], __mmask16(~go_left), i);
+    }
+#endif
+    for (; fits && i < end; ++i) {
+        const uint32_t side = sweep.first(order_key(c[i])) ^ 1u;
+        fits = g[side].add(order_key(child_c[side][i]), i);
+    }
+    if (!fits) return std::nullopt;
+    std::array<SplitKey, 2> child;
+    for (int side = 0; side < 2; ++side) {
+        const auto s = median_of_items(g[side].items, g[side].m, g[side].below, size[side] / 2);
+        if (!s) return std::nullopt;
+        child[side] = *s;
+    }
+    return child;
+}
+
+/// Stable partition of a top node's primitives, cur[begin, end), into the ranges of its four
+/// grandchildren in other: split by `split` on `axis`, then each child by child[side] on
+/// child_axis[side].
+void partition_four(const TopArrays& cur, const TopArrays& other, uint32_t begin, uint32_t end,
+                    int axis, SplitKey split, const int child_axis[2],
+                    const std::array<SplitKey, 2>& child) {
+    const uint32_t count = end - begin, mid = begin + count / 2;
+    uint32_t at[4] = {begin, begin + count / 2 / 2, mid, mid + (count - count / 2) / 2};
+    [[maybe_unused]] const uint32_t ends[4] = {at[1], at[2], at[3], end};
+    const float* c = cur.c2[axis];
+    const float* child_c[2] = {cur.c2[child_axis[0]], cur.c2[child_axis[1]]};
+    SplitSweep sweep{split}, child_sweep[2] = {{child[0]}, {child[1]}};
+    uint32_t i = begin;
+#if defined(__AVX512F__)
+    for (; i < end; i += 16) {
+        const uint32_t n = std::min(end - i, 16u);
+        const __mmask16 valid = __mmask16((1u << n) - 1u);
+        const __m512i key = order_keys(_mm512_maskz_loadu_ps(valid, c + i));
+        const __mmask16 first = sweep.first(key, valid);
+        __mmask16 go[4];
+        for (int s = 0; s < 2; ++s) {
+            const __mmask16 among = s == 0 ? first : __mmask16(valid & ~first);
+            const __m512i child_key =
+                child_axis[s] == axis ? key
+                                      : order_keys(_mm512_maskz_loadu_ps(valid, child_c[s] + i));
+            go[2 * s] = child_sweep[s].first(child_key, among);
+            go[2 * s + 1] = __mmask16(among & ~go[2 * s]);
+        }
+        uint32_t* const to[4] = {&at[0], &at[1], &at[2], &at[3]};
+        store_compressed(cur, other, i, valid, go, to, 4);
+    }
+#endif
+    for (; i < end; ++i) {
+        const uint32_t s = sweep.first(order_key(c[i])) ^ 1u;
+        const uint32_t q = 2 * s + (child_sweep[s].first(order_key(child_c[s][i])) ^ 1u);
+        copy_primitive(cur, i, other, at[q]++);
+    }
+    for (int q = 0; q < 4; ++q) assert(at[q] == ends[q]);
+}
+
+/// The nodes of more than `subtree_limit` primitives, split without sorted lists: the split key
+/// by select_split on the longest axis of the key bounds, and partition_top into the other
+/// buffer; or, when both children are above the limit too, their splits found first
+/// (child_key_bounds, select_children) and the four grandchildren made by partition_four, one
+/// pass over the node's primitives where two levels of partition_top make two. Each node of at
+/// most subtree_limit primitives becomes a subtree build on its own compact arrays, which stay
+/// in the cache where the whole tree's lists would not (docs/performance.md, "How the build
+/// works"). The same tree as one subtree build over all the primitives.
 struct TopSplitter {
     const TreeOut& out;
     const SubtreeMemory& mem;
     uint32_t subtree_limit;
+    uint32_t capacity;    ///< mem.items holds 2 capacity items, capacity >= 65,536
     uint32_t* histogram;  ///< 65,536 counts
     uint32_t* root_ids;   ///< the ids of the root's buffer, whose root has null ids (positions)
 
@@ -600,18 +820,37 @@ struct TopSplitter {
         }
         const uint32_t node_index = static_cast<uint32_t>(out.nodes.size());
         out.nodes.push_back(BvhNode{});
-        const KeyBounds bounds = key_bounds(cur, begin, end);
-        float extent[3];
-        for (int k = 0; k < 3; ++k) extent[k] = key_value(bounds.hi[k]) - key_value(bounds.lo[k]);
-        const int axis = longest_axis(extent);
+        const int axis = longest_axis(key_bounds(cur, begin, end));
         out.nodes[node_index].axis = static_cast<uint16_t>(axis);
         const uint32_t mid = begin + count / 2;
-        // mem.items holds max(subtree_limit, 65,536) items (median_tree)
-        const SplitKey split = select_split(cur.c2[axis], begin, end, count / 2, histogram,
-                                            mem.items, std::max(subtree_limit, 1u << 16));
+        const SplitKey split =
+            select_split(cur.c2[axis], begin, end, count / 2, histogram, mem.items, capacity);
+        const TopArrays spare{cur.ids ? cur.ids : root_ids, {cur.c2[0], cur.c2[1], cur.c2[2]}};
+        if (count / 2 > subtree_limit) {
+            // both children are split on their own too: their splits found first, and the
+            // four grandchildren's ranges made in one partition (one pass over the node less)
+            const std::array<KeyBounds, 2> bounds = child_key_bounds(cur, begin, end, axis, split);
+            const int child_axis[2] = {longest_axis(bounds[0]), longest_axis(bounds[1])};
+            if (const auto child = select_children(cur, begin, end, axis, split, child_axis,
+                                                   histogram, mem.items, capacity)) {
+                partition_four(cur, other, begin, end, axis, split, child_axis, *child);
+                out.lap(&BuildPhases::splits);
+                const uint32_t range[5] = {begin, begin + count / 2 / 2, mid,
+                                           mid + (count - count / 2) / 2, end};
+                for (int side = 0; side < 2; ++side) {
+                    const uint32_t child_index = static_cast<uint32_t>(out.nodes.size());
+                    if (side == 1) out.nodes[node_index].index = child_index;
+                    out.nodes.push_back(BvhNode{});
+                    out.nodes[child_index].axis = static_cast<uint16_t>(child_axis[side]);
+                    build(range[2 * side], range[2 * side + 1], other, spare);
+                    out.nodes[child_index].index = static_cast<uint32_t>(out.nodes.size());
+                    build(range[2 * side + 1], range[2 * side + 2], other, spare);
+                }
+                return;
+            }
+        }
         partition_top(cur, other, begin, mid, end, axis, split);
         out.lap(&BuildPhases::splits);
-        const TopArrays spare{cur.ids ? cur.ids : root_ids, {cur.c2[0], cur.c2[1], cur.c2[2]}};
         build(begin, mid, other, spare);  // the first child follows its parent
         out.nodes[node_index].index = static_cast<uint32_t>(out.nodes.size());
         build(mid, end, other, spare);
@@ -663,9 +902,12 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
         mem.scratch = block.take<uint64_t>(n);
         build_subtree(centroid2, static_cast<uint32_t>(n), 0, nullptr, mem, out);
     } else {
+        // the items also hold select_split's and select_children's keys: all of a node's
+        // keys when it has fewer than 65,536
+        const size_t capacity = std::max<size_t>(limit, 1u << 16);
         TempBlock block((lent ? 0 : 8 * TempBlock::bytes_for<uint32_t>(n)) +
                         6 * TempBlock::bytes_for<uint32_t>(limit) +
-                        TempBlock::bytes_for<uint64_t>(std::max<size_t>(limit, 1u << 16)) +
+                        TempBlock::bytes_for<uint64_t>(2 * capacity) +
                         TempBlock::bytes_for<uint64_t>(limit) +
                         TempBlock::bytes_for<uint32_t>(size_t(1) << 16));
         // the two buffers' eight arrays in the lent memory or the block
@@ -681,11 +923,14 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
         SubtreeMemory mem{};
         for (int b = 0; b < 2; ++b)
             for (int k = 0; k < 3; ++k) mem.lists[b][k] = block.take<uint32_t>(limit);
-        // the items also hold select_split's keys, all of them in a node of fewer than 65,536
-        mem.items = block.take<uint64_t>(std::max<size_t>(limit, 1u << 16));
+        mem.items = block.take<uint64_t>(2 * capacity);
         mem.scratch = block.take<uint64_t>(limit);
-        const TopSplitter top{out, mem, static_cast<uint32_t>(limit),
-                              block.take<uint32_t>(size_t(1) << 16), buffers[0].ids};
+        const TopSplitter top{out,
+                              mem,
+                              static_cast<uint32_t>(limit),
+                              static_cast<uint32_t>(capacity),
+                              block.take<uint32_t>(size_t(1) << 16),
+                              buffers[0].ids};
         // the root's ids are its positions: not written, read as such
         const TopArrays root{nullptr, {buffers[0].c2[0], buffers[0].c2[1], buffers[0].c2[2]}};
         top.build(0, static_cast<uint32_t>(n), root, buffers[1]);

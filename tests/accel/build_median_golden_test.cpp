@@ -192,6 +192,27 @@ TEST(BuildMedianGolden, NodesOf65536OrMoreSplitAboveTheSubtreeSizeGiveTheReferen
     for (const auto& [what, boxes] : sets) expect_same_as_reference(boxes, 4, what, 30000);
 }
 
+TEST(BuildMedianGolden, NodesWhoseChildrenSplitOnTheirOwnGiveTheReferenceTree) {
+    // a node whose children are both above the subtree size finds their splits from a sample
+    // of its own keys and partitions its four grandchildren at once, or, when a child's
+    // bracket holds too many keys (equal keys) or misses its median (a sample of boxes each at
+    // one end of x, the axis of the node and of its children), partitions its two children
+    const size_t n = 300000;
+    std::vector<Aabb> misleading = random_boxes(n, 9);
+    for (size_t i = 0; i < n; ++i) {
+        misleading[i].lo.x *= 10.0f;
+        misleading[i].hi.x = misleading[i].lo.x;
+    }
+    for (size_t i = 0; i < n; i += n / 8192)
+        misleading[i].lo.x = misleading[i].hi.x = (i / (n / 8192)) % 2 ? 99.9f : -99.9f;
+    const std::pair<std::string, std::vector<Aabb>> sets[] = {
+        {"random", random_boxes(n, 7)},
+        {"tied", tied_boxes(n, 8)},
+        {"equal", std::vector<Aabb>(n, Aabb{vec3(-1.0f), vec3(1.0f)})},
+        {"misleading sample", misleading}};
+    for (const auto& [what, boxes] : sets) expect_same_as_reference(boxes, 4, what, 60000);
+}
+
 TEST(BuildMedianGolden, MoreThanTheDefaultSubtreeSizeGivesTheReferenceTree) {
 #ifdef RAYLANE_SANITIZED
     GTEST_SKIP() << "600,000 primitives: release builds only";
