@@ -508,76 +508,94 @@ struct SplitSweep {
 #endif
 };
 
-/// The split key of the `left` smallest keys of a node, from the m items (key << 32 |
-/// position) of the keys within a bracket and the count `below` of the keys under it; nothing
-/// when the bracket does not hold the median. Reorders the items.
-std::optional<SplitKey> median_of_items(uint64_t* items, uint32_t m, uint32_t below,
-                                        uint32_t left) {
-    if (left < below || left >= below + m) return std::nullopt;
-    uint64_t* median = items + (left - below);
-    std::nth_element(items, median, items + m);
-    const uint32_t key = uint32_t(*median >> 32);
-    // the keys below it: those below the bracket and those of the nth_element's first part
-    for (const uint64_t* p = items; p != median; ++p) below += uint32_t(*p >> 32) < key;
-    return SplitKey{key, left - below};
+/// The k-th smallest (from 0) of m keys and how many of the keys are smaller, for keys that are
+/// all within [lo, hi]: a radix select, 11 bits of the keys' offset from lo at a time from the
+/// top of the range's width, each round counting the keys within the bucket the last one chose.
+struct Selected {
+    uint32_t key, below;
+};
+
+Selected select_key(const uint32_t* keys, uint32_t m, uint32_t k, uint32_t lo, uint32_t hi) {
+    constexpr int digit_bits = 11;
+    uint32_t below = 0;
+    for (;;) {
+        const int shift = std::max(int(std::bit_width(hi - lo)) - digit_bits, 0);
+        uint32_t count[1u << digit_bits] = {};
+        for (uint32_t i = 0; i < m; ++i) {
+            const uint32_t offset = keys[i] - lo;  // wraps for keys below lo
+            if (offset <= hi - lo) ++count[offset >> shift];
+        }
+        uint32_t d = 0;
+        while (count[d] <= k) {
+            k -= count[d];
+            below += count[d++];
+        }
+        lo += d << shift;
+        if (shift == 0) return {lo, below};
+        hi = lo + ((1u << shift) - 1u);
+    }
 }
 
-/// A bracket of keys [lo, hi] that holds the `left`-th smallest of `count` keys, from the
-/// sorted keys of an even sample of them: all keys for a node of fewer than 65,536.
+/// The split key of the `left` smallest keys of a node, from the m keys of the node within a
+/// bracket and the count `below` of the keys under it; nothing when the bracket does not hold
+/// the median.
+std::optional<SplitKey> median_of_bracket(const uint32_t* keys, uint32_t m, uint32_t below,
+                                          uint32_t left, uint32_t lo, uint32_t hi) {
+    if (left < below || left >= below + m) return std::nullopt;
+    const Selected s = select_key(keys, m, left - below, lo, hi);
+    return SplitKey{s.key, left - below - s.below};
+}
+
+/// A bracket of keys [lo, hi] that holds the `left`-th smallest of `count` keys, from an even
+/// sample of them: all keys for a node of fewer than 65,536.
 struct Bracket {
     uint32_t lo = 0, hi = ~0u;
 };
 
 constexpr uint32_t bracket_samples = 4096;
 
-Bracket bracket_of_sample(const uint32_t* sorted, uint32_t samples, uint32_t left, uint32_t count) {
+Bracket bracket_of_sample(const uint32_t* sample, uint32_t samples, uint32_t left, uint32_t count) {
     constexpr uint32_t margin = 128;
     if (count < 16 * bracket_samples || samples <= 2 * margin) return {};
     const uint32_t at = uint32_t(uint64_t(left) * samples / count);
-    return {sorted[std::max(at, margin) - margin], sorted[std::min(at + margin, samples - 1)]};
+    return {select_key(sample, samples, std::max(at, margin) - margin, 0, ~0u).key,
+            select_key(sample, samples, std::min(at + margin, samples - 1), 0, ~0u).key};
 }
 
-/// Gathers the keys of a node within a bracket as (key << 32 | position) items, and counts
-/// the keys under it. add() takes the keys in order; false once more than `capacity` would be
-/// gathered.
+/// Gathers the keys of a node within a bracket, and counts the keys under it. add() takes the
+/// keys in order; false once more than `capacity` would be gathered.
 struct BracketGather {
     Bracket b;
-    uint64_t* items;
+    uint32_t* keys;
     uint32_t capacity;
     uint32_t m = 0, below = 0;
 
-    bool add(uint32_t key, uint32_t position) {
+    bool add(uint32_t key) {
         below += key < b.lo;
         if (key < b.lo || key > b.hi) return true;
         if (m == capacity) return false;
-        items[m++] = uint64_t(key) << 32 | position;
+        keys[m++] = key;
         return true;
     }
 #if defined(__AVX512F__)
-    /// The lanes `among` of sixteen keys at positions first .. first + 15.
-    bool add(__m512i key, __mmask16 among, uint32_t first) {
+    /// The lanes `among` of sixteen keys.
+    bool add(__m512i key, __mmask16 among) {
         const __m512i lo = _mm512_set1_epi32(int(b.lo)), hi = _mm512_set1_epi32(int(b.hi));
         below += uint32_t(std::popcount(unsigned(_mm512_mask_cmplt_epu32_mask(among, key, lo))));
         const __mmask16 in =
             _mm512_mask_cmple_epu32_mask(_mm512_mask_cmpge_epu32_mask(among, key, lo), key, hi);
-        if (!in) return true;
-        if (m + 16 > capacity) return false;
-        const __m512i lane = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
-        for (int half = 0; half < 2; ++half) {
-            const __m256i keys8 =
-                half ? _mm512_extracti64x4_epi64(key, 1) : _mm512_castsi512_si256(key);
-            const __m512i all = _mm512_or_si512(
-                _mm512_slli_epi64(_mm512_cvtepu32_epi64(keys8), 32),
-                _mm512_add_epi64(_mm512_set1_epi64(int64_t(first) + 8 * half), lane));
-            const __mmask8 take = __mmask8(in >> (8 * half));
-            const uint32_t t = uint32_t(std::popcount(unsigned(take)));
-            _mm512_mask_storeu_epi64(items + m, __mmask8((1u << t) - 1u),
-                                     _mm512_maskz_compress_epi64(take, all));
-            m += t;
-        }
+        const uint32_t t = uint32_t(std::popcount(unsigned(in)));
+        if (m + t > capacity) return false;
+        _mm512_mask_storeu_epi32(keys + m, __mmask16((1u << t) - 1u),
+                                 _mm512_maskz_compress_epi32(in, key));
+        m += t;
         return true;
     }
 #endif
+    /// The split key of the `left` smallest keys of the node, as median_of_bracket.
+    std::optional<SplitKey> median(uint32_t left) const {
+        return median_of_bracket(keys, m, below, left, b.lo, b.hi);
+    }
 };
 
 /// select_split's fallback: a radix select, the 16 high bits' histogram, then the low bits'
@@ -600,26 +618,24 @@ SplitKey radix_select(const float* c, uint32_t begin, uint32_t end, uint32_t lef
 
 /// The split of the node c[begin, end) that gives its first child `left` primitives. The keys
 /// between two keys of an even sample that bracket the median (all keys, in a node of fewer
-/// than 65,536) are gathered into `items` and the median found among them; when they are more
+/// than 65,536) are gathered into `keys` and the median found among them; when they are more
 /// than `capacity` or the median is outside, radix_select.
 SplitKey select_split(const float* c, uint32_t begin, uint32_t end, uint32_t left,
-                      uint32_t* histogram, uint64_t* items, uint32_t capacity) {
+                      uint32_t* histogram, uint32_t* keys, uint32_t capacity) {
     const uint32_t count = end - begin;
     uint32_t* sample = histogram;
     const uint32_t samples = count >= 16 * bracket_samples ? bracket_samples : 0;
     for (uint32_t j = 0; j < samples; ++j)
         sample[j] = order_key(c[begin + j * (count / bracket_samples)]);
-    std::sort(sample, sample + samples);
-    BracketGather g{bracket_of_sample(sample, samples, left, count), items, capacity};
+    BracketGather g{bracket_of_sample(sample, samples, left, count), keys, capacity};
     bool fits = true;
     uint32_t i = begin;
 #if defined(__AVX512F__)
-    for (; fits && i + 16 <= end; i += 16)
-        fits = g.add(order_keys(_mm512_loadu_ps(c + i)), 0xffff, i);
+    for (; fits && i + 16 <= end; i += 16) fits = g.add(order_keys(_mm512_loadu_ps(c + i)), 0xffff);
 #endif
-    for (; fits && i < end; ++i) fits = g.add(order_key(c[i]), i);
+    for (; fits && i < end; ++i) fits = g.add(order_key(c[i]));
     if (fits)
-        if (const auto s = median_of_items(items, g.m, g.below, left)) return *s;
+        if (const auto s = g.median(left)) return *s;
     return radix_select(c, begin, end, left, histogram);
 }
 
@@ -698,19 +714,19 @@ std::array<KeyBounds, 2> child_key_bounds(const TopArrays& cur, uint32_t begin, 
 /// child_axis[side], as select_split would find them once the node is partitioned, but from the
 /// node's unpartitioned primitives: an even sample of the node's keys, each on its side by
 /// key, brackets each child's median, and one sweep gathers both children's keys within their
-/// brackets into items[0 .. capacity) and items[capacity .. 2 capacity). Nothing when a bracket
+/// brackets into keys[0 .. capacity) and keys[capacity .. 2 capacity). Nothing when a bracket
 /// holds more than `capacity` keys or misses its child's median.
 std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uint32_t begin,
                                                        uint32_t end, int axis, SplitKey split,
                                                        const int child_axis[2], uint32_t* sample,
-                                                       uint64_t* items, uint32_t capacity) {
+                                                       uint32_t* keys, uint32_t capacity) {
     const uint32_t count = end - begin;
     const uint32_t size[2] = {count / 2, count - count / 2};
     const float* c = cur.c2[axis];
     const float* child_c[2] = {cur.c2[child_axis[0]], cur.c2[child_axis[1]]};
     // the sample: 2 bracket_samples primitives of the node, the keys equal to the split skipped
     // (their side depends on their order)
-    uint32_t* sorted[2] = {sample, sample + 2 * bracket_samples};
+    uint32_t* taken[2] = {sample, sample + 2 * bracket_samples};
     uint32_t samples[2] = {0, 0};
     if (count >= 32 * bracket_samples) {
         const uint32_t step = count / (2 * bracket_samples);
@@ -718,14 +734,12 @@ std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uin
             const uint32_t p = begin + j * step, key = order_key(c[p]);
             if (key == split.key) continue;
             const int side = key < split.key ? 0 : 1;
-            sorted[side][samples[side]++] = order_key(child_c[side][p]);
+            taken[side][samples[side]++] = order_key(child_c[side][p]);
         }
-        for (int side = 0; side < 2; ++side) std::sort(sorted[side], sorted[side] + samples[side]);
     }
     BracketGather g[2] = {
-        {bracket_of_sample(sorted[0], samples[0], size[0] / 2, size[0]), items, capacity},
-        {bracket_of_sample(sorted[1], samples[1], size[1] / 2, size[1]), items + capacity,
-         capacity}};
+        {bracket_of_sample(taken[0], samples[0], size[0] / 2, size[0]), keys, capacity},
+        {bracket_of_sample(taken[1], samples[1], size[1] / 2, size[1]), keys + capacity, capacity}};
     SplitSweep sweep{split};
     bool fits = true;
     uint32_t i = begin;
@@ -737,17 +751,17 @@ std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uin
         for (int side = 0; side < 2; ++side)
             child_key[side] =
                 child_axis[side] == axis ? key : order_keys(_mm512_loadu_ps(child_c[side] + i));
-        fits = g[0].add(child_key[0], go_left, i) && g[1].add(child_key[1], __mmask16(~go_left), i);
+        fits = g[0].add(child_key[0], go_left) && g[1].add(child_key[1], __mmask16(~go_left));
     }
 #endif
     for (; fits && i < end; ++i) {
         const uint32_t side = sweep.first(order_key(c[i])) ^ 1u;
-        fits = g[side].add(order_key(child_c[side][i]), i);
+        fits = g[side].add(order_key(child_c[side][i]));
     }
     if (!fits) return std::nullopt;
     std::array<SplitKey, 2> child;
     for (int side = 0; side < 2; ++side) {
-        const auto s = median_of_items(g[side].items, g[side].m, g[side].below, size[side] / 2);
+        const auto s = g[side].median(size[side] / 2);
         if (!s) return std::nullopt;
         child[side] = *s;
     }
@@ -806,7 +820,8 @@ struct TopSplitter {
     const TreeOut& out;
     const SubtreeMemory& mem;
     uint32_t subtree_limit;
-    uint32_t capacity;    ///< mem.items holds 2 capacity items, capacity >= 65,536
+    uint32_t* keys;       ///< 2 capacity keys gathered by the selects
+    uint32_t capacity;    ///< >= 65,536: all the keys of a node of fewer
     uint32_t* histogram;  ///< 65,536 counts
     uint32_t* root_ids;   ///< the ids of the root's buffer, whose root has null ids (positions)
 
@@ -824,7 +839,7 @@ struct TopSplitter {
         out.nodes[node_index].axis = static_cast<uint16_t>(axis);
         const uint32_t mid = begin + count / 2;
         const SplitKey split =
-            select_split(cur.c2[axis], begin, end, count / 2, histogram, mem.items, capacity);
+            select_split(cur.c2[axis], begin, end, count / 2, histogram, keys, capacity);
         const TopArrays spare{cur.ids ? cur.ids : root_ids, {cur.c2[0], cur.c2[1], cur.c2[2]}};
         if (count / 2 > subtree_limit) {
             // both children are split on their own too: their splits found first, and the
@@ -832,7 +847,7 @@ struct TopSplitter {
             const std::array<KeyBounds, 2> bounds = child_key_bounds(cur, begin, end, axis, split);
             const int child_axis[2] = {longest_axis(bounds[0]), longest_axis(bounds[1])};
             if (const auto child = select_children(cur, begin, end, axis, split, child_axis,
-                                                   histogram, mem.items, capacity)) {
+                                                   histogram, keys, capacity)) {
                 partition_four(cur, other, begin, end, axis, split, child_axis, *child);
                 out.lap(&BuildPhases::splits);
                 const uint32_t range[5] = {begin, begin + count / 2 / 2, mid,
@@ -902,12 +917,13 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
         mem.scratch = block.take<uint64_t>(n);
         build_subtree(centroid2, static_cast<uint32_t>(n), 0, nullptr, mem, out);
     } else {
-        // the items also hold select_split's and select_children's keys: all of a node's
-        // keys when it has fewer than 65,536
+        // the keys that select_split and select_children gather: all of a node's when it has
+        // fewer than 65,536
         const size_t capacity = std::max<size_t>(limit, 1u << 16);
         TempBlock block((lent ? 0 : 8 * TempBlock::bytes_for<uint32_t>(n)) +
                         6 * TempBlock::bytes_for<uint32_t>(limit) +
-                        TempBlock::bytes_for<uint64_t>(2 * capacity) +
+                        TempBlock::bytes_for<uint32_t>(2 * capacity) +
+                        TempBlock::bytes_for<uint64_t>(limit) +
                         TempBlock::bytes_for<uint64_t>(limit) +
                         TempBlock::bytes_for<uint32_t>(size_t(1) << 16));
         // the two buffers' eight arrays in the lent memory or the block
@@ -923,11 +939,12 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
         SubtreeMemory mem{};
         for (int b = 0; b < 2; ++b)
             for (int k = 0; k < 3; ++k) mem.lists[b][k] = block.take<uint32_t>(limit);
-        mem.items = block.take<uint64_t>(2 * capacity);
+        mem.items = block.take<uint64_t>(limit);
         mem.scratch = block.take<uint64_t>(limit);
         const TopSplitter top{out,
                               mem,
                               static_cast<uint32_t>(limit),
+                              block.take<uint32_t>(2 * capacity),
                               static_cast<uint32_t>(capacity),
                               block.take<uint32_t>(size_t(1) << 16),
                               buffers[0].ids};
