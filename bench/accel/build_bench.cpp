@@ -101,6 +101,24 @@ void BM_BuildMedianFirst(benchmark::State& state, const char* file, int level) {
     BM_BuildMedian(state, file, level);  // registered with Iterations(1)
 }
 
+/// The median-split build with subtrees of at most state.range(0) primitives
+/// (BuildParams::median_subtree; the default is 2^17): how the limit moves the build time of
+/// the larger meshes. The tree is the same for every limit.
+void BM_BuildMedianSubtree(benchmark::State& state, const char* file, int level) {
+    const Mesh* mesh = model(file, level);
+    if (!mesh) {
+        state.SkipWithError("model not found");
+        return;
+    }
+    const BuildParams params{.median_subtree = static_cast<uint32_t>(state.range(0))};
+    for (auto _ : state) {
+        MeshAccel accel = build_mesh_accel(*mesh, params);
+        benchmark::DoNotOptimize(accel.bvh.nodes.data());
+    }
+    state.counters["triangles/s"] = benchmark::Counter(
+        static_cast<double>(mesh->tris.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 /// build_bvh_median alone, on triangle boxes made once (the rest of BM_BuildMedian is the
 /// mesh's part: the boxes, and the vertices in leaf order).
 void BM_BuildBvhMedian(benchmark::State& state, const char* file, int level) {
@@ -134,6 +152,14 @@ BENCHMARK_CAPTURE(BM_BuildMedianFirst, dragon_400k, "dragon.ply", 1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BuildMedianFirst, dragon_1600k, "dragon.ply", 2)
     ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BuildMedianSubtree, dragon_400k, "dragon.ply", 1)
+    ->RangeMultiplier(2)
+    ->Range(1 << 16, 1 << 19)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BuildMedianSubtree, dragon_1600k, "dragon.ply", 2)
+    ->RangeMultiplier(2)
+    ->Range(1 << 16, 1 << 19)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BuildBvhMedian, dragon_100k, "dragon.ply", 0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BuildBvhMedian, dragon_1600k, "dragon.ply", 2)->Unit(benchmark::kMillisecond);

@@ -465,6 +465,12 @@ void store_compressed(const TopArrays& from, const TopArrays& to, uint32_t i, __
                          reinterpret_cast<uint32_t*>(to.c2[1]),
                          reinterpret_cast<uint32_t*>(to.c2[2])};
     for (int g = 0; g < groups; ++g) {
+        if (go[g] == valid) {
+            // the whole chunk in one group (the mesh's order is near spatial order)
+            for (int a = 0; a < 4; ++a) _mm512_mask_storeu_epi32(dest[a] + *at[g], valid, v[a]);
+            *at[g] += uint32_t(std::popcount(unsigned(valid)));
+            return;
+        }
         const uint32_t n = uint32_t(std::popcount(unsigned(go[g])));
         const __mmask16 store = __mmask16((1u << n) - 1u);
         for (int a = 0; a < 4; ++a)
