@@ -1009,11 +1009,11 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
         },
         lent, &accel.phases, &clock);
     // vertices in leaf order (made anew in the lent memory): a gather by id, its addresses
-    // asked for ahead (the triangle's indices 64 triangles ahead, its vertices 32 ahead, whose
+    // asked for ahead (the triangle's indices 128 triangles ahead, its vertices 64 ahead, whose
     // indices are then in cache): far enough to cover a miss to memory, not only to the
     // last-level cache (docs/performance.md, "How the build works": faster at 400k and 1.6M).
     const uint32_t* ids = accel.bvh.prim_ids.data();
-    constexpr size_t tri_ahead = 64, vert_ahead = 32;
+    constexpr size_t tri_ahead = 128, vert_ahead = 64;
     for (size_t k = 0; k < n; ++k) {
         if (k + tri_ahead < n) __builtin_prefetch(&tris[ids[k + tri_ahead]]);
         if (k + vert_ahead < n) {
