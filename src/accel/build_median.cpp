@@ -471,6 +471,7 @@ void store_compressed(const TopArrays& from, const TopArrays& to, uint32_t i, __
             *at[g] += uint32_t(std::popcount(unsigned(valid)));
             return;
         }
+        if (!go[g]) continue;
         const uint32_t n = uint32_t(std::popcount(unsigned(go[g])));
         const __mmask16 store = __mmask16((1u << n) - 1u);
         for (int a = 0; a < 4; ++a)
