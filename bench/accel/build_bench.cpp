@@ -58,11 +58,22 @@ std::vector<std::pair<std::string, double>> phase_times(const BuildPhases& p) {
             {"boxes_ms", p.boxes}};
 }
 
-void build_mesh(benchmark::State& state, const char* file, int level, BvhBuild method) {
+/// Builds the mesh in the timed loop. With `warm_up`, one untimed build first: every timed build
+/// then follows a build of the same mesh, as a repeated build does. (Without it, a repetition of
+/// one iteration would time one build after other benchmarks ran: Google Benchmark fixes the
+/// iteration count of every repetition from the first repetition's first build, which is the
+/// process's first build of that size, and for the 1.6M dragon that cold build took 0.31 s,
+/// longer than --benchmark_min_time=0.3: one iteration per repetition.)
+void build_mesh(benchmark::State& state, const char* file, int level, BvhBuild method,
+                bool warm_up) {
     const Mesh* mesh = model(file, level);
     if (!mesh) {
         state.SkipWithError("model not found");
         return;
+    }
+    if (warm_up) {
+        MeshAccel warm = build_mesh_accel(*mesh, BuildParams{.method = method});
+        benchmark::DoNotOptimize(warm.bvh.nodes.data());
     }
     BuildPhases sum;
     for (auto _ : state) {
@@ -82,12 +93,12 @@ void build_mesh(benchmark::State& state, const char* file, int level, BvhBuild m
 }
 
 void BM_BuildMedian(benchmark::State& state, const char* file, int level) {
-    build_mesh(state, file, level, BvhBuild::median);
+    build_mesh(state, file, level, BvhBuild::median, true);
 }
 
 /// The binned SAH build (a comparison option), the same way.
 void BM_BuildSah(benchmark::State& state, const char* file, int level) {
-    build_mesh(state, file, level, BvhBuild::sah);
+    build_mesh(state, file, level, BvhBuild::sah, true);
 }
 
 /// The first build of the process, once: what `raylane render` and `raylane info` pay, every
@@ -98,7 +109,7 @@ void BM_BuildSah(benchmark::State& state, const char* file, int level) {
 ///   for s in 100k 400k 1600k; do for r in 1 2 3 4 5; do
 ///     bench_build --benchmark_filter="BM_BuildMedianFirst/dragon_$s"; done; done
 void BM_BuildMedianFirst(benchmark::State& state, const char* file, int level) {
-    BM_BuildMedian(state, file, level);  // registered with Iterations(1)
+    build_mesh(state, file, level, BvhBuild::median, false);  // registered with Iterations(1)
 }
 
 /// The median-split build with subtrees of at most state.range(0) primitives
@@ -111,6 +122,10 @@ void BM_BuildMedianSubtree(benchmark::State& state, const char* file, int level)
         return;
     }
     const BuildParams params{.median_subtree = static_cast<uint32_t>(state.range(0))};
+    {
+        MeshAccel warm = build_mesh_accel(*mesh, params);  // untimed, as in build_mesh
+        benchmark::DoNotOptimize(warm.bvh.nodes.data());
+    }
     for (auto _ : state) {
         MeshAccel accel = build_mesh_accel(*mesh, params);
         benchmark::DoNotOptimize(accel.bvh.nodes.data());
