@@ -539,6 +539,8 @@ Selected select_key(const uint32_t* keys, uint32_t m, uint32_t k, uint32_t lo, u
         }
         lo += d << shift;
         if (shift == 0) return {lo, below};
+        // the bucket's end; it may wrap past 2^32, which the offsets' arithmetic (mod 2^32)
+        // absorbs: no key below the caller's lo is among the keys
         hi = lo + ((1u << shift) - 1u);
     }
 }
@@ -554,7 +556,8 @@ std::optional<SplitKey> median_of_bracket(const uint32_t* keys, uint32_t m, uint
 }
 
 /// A bracket of keys [lo, hi] that holds the `left`-th smallest of `count` keys, from an even
-/// sample of them: all keys for a node of fewer than 65,536.
+/// sample of them: all keys for a node of fewer than 65,536, or when the sample holds no more
+/// than twice the margin.
 struct Bracket {
     uint32_t lo = 0, hi = ~0u;
 };
@@ -886,8 +889,9 @@ struct TopSplitter {
 /// Up to params.median_subtree primitives, one subtree build. Its memory: nine arrays of n
 /// 4-byte values (the centroids and both buffers of the three axis lists) and a block of 16
 /// bytes per primitive for the radix sort's items, reused for the side stamps after the sorts.
-/// Above, TopSplitter: two buffers of n ids and centroids (eight arrays), and the subtree
-/// builds' lists and items for median_subtree primitives. The arrays of n are taken from `lent`
+/// Above, TopSplitter: two buffers of n ids and centroids (eight arrays), the subtree builds'
+/// lists and items for median_subtree primitives, the selects' keys (2 max(median_subtree,
+/// 65,536)) and a histogram of 65,536 counts. The arrays of n are taken from `lent`
 /// when the caller lends 36n bytes it will overwrite afterwards (build_mesh_accel lends the
 /// triangle-vertex array it fills next), else from the block: fresh pages cost about 1.4 us each
 /// on this VM. `phases`, when given, gets the times of the centroids, the sorts and the splits,
