@@ -71,8 +71,8 @@ void build_mesh(benchmark::State& state, const char* file, int level, BvhBuild m
         state.SkipWithError("model not found");
         return;
     }
-    if (warm_up) {
-        MeshAccel warm = build_mesh_accel(*mesh, BuildParams{.method = method});
+    if (warm_up) {  // freed before the timed builds, as a repeated build's predecessor is
+        const MeshAccel warm = build_mesh_accel(*mesh, BuildParams{.method = method});
         benchmark::DoNotOptimize(warm.bvh.nodes.data());
     }
     BuildPhases sum;
