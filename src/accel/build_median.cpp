@@ -631,7 +631,8 @@ SplitKey radix_select(const float* c, uint32_t begin, uint32_t end, uint32_t lef
 /// than 65,536) are gathered into `keys` and the median found among them; when they are more
 /// than `capacity` or the median is outside, radix_select.
 SplitKey select_split(const float* c, uint32_t begin, uint32_t end, uint32_t left,
-                      uint32_t* histogram, uint32_t* keys, uint32_t capacity) {
+                      uint32_t* histogram, uint32_t* keys, uint32_t capacity,
+                      MedianSplitPaths& paths) {
     const uint32_t count = end - begin;
     uint32_t* sample = histogram;
     const uint32_t samples = count >= 16 * bracket_samples ? bracket_samples : 0;
@@ -645,7 +646,11 @@ SplitKey select_split(const float* c, uint32_t begin, uint32_t end, uint32_t lef
 #endif
     for (; fits && i < end; ++i) fits = g.add(order_key(c[i]));
     if (fits)
-        if (const auto s = g.median(left)) return *s;
+        if (const auto s = g.median(left)) {
+            ++paths.bracketed;
+            return *s;
+        }
+    ++paths.radix;
     return radix_select(c, begin, end, left, histogram);
 }
 
@@ -750,6 +755,8 @@ std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uin
     BracketGather g[2] = {
         {bracket_of_sample(taken[0], samples[0], size[0] / 2, size[0]), keys, capacity},
         {bracket_of_sample(taken[1], samples[1], size[1] / 2, size[1]), keys + capacity, capacity}};
+    for (int side = 0; side < 2; ++side)  // too few samples (keys equal to the split): all keys
+        if (g[side].b.lo == 0 && g[side].b.hi == ~0u && size[side] > capacity) return std::nullopt;
     SplitSweep sweep{split};
     bool fits = true;
     uint32_t i = begin;
@@ -834,6 +841,7 @@ struct TopSplitter {
     uint32_t capacity;    ///< >= 65,536: all the keys of a node of fewer
     uint32_t* histogram;  ///< 65,536 counts
     uint32_t* root_ids;   ///< the ids of the root's buffer, whose root has null ids (positions)
+    MedianSplitPaths& paths;
 
     /// The subtree of the node cur[begin, end).
     void build(uint32_t begin, uint32_t end, const TopArrays& cur, const TopArrays& other) const {
@@ -849,7 +857,7 @@ struct TopSplitter {
         out.nodes[node_index].axis = static_cast<uint16_t>(axis);
         const uint32_t mid = begin + count / 2;
         const SplitKey split =
-            select_split(cur.c2[axis], begin, end, count / 2, histogram, keys, capacity);
+            select_split(cur.c2[axis], begin, end, count / 2, histogram, keys, capacity, paths);
         const TopArrays spare{cur.ids ? cur.ids : root_ids, {cur.c2[0], cur.c2[1], cur.c2[2]}};
         if (count / 2 > subtree_limit) {
             // both children are split on their own too: their splits found first, and the
@@ -859,6 +867,7 @@ struct TopSplitter {
             if (const auto child = select_children(cur, begin, end, axis, split, child_axis,
                                                    histogram, keys, capacity)) {
                 partition_four(cur, other, begin, end, axis, split, child_axis, *child);
+                ++paths.four_way;
                 out.lap(&BuildPhases::splits);
                 const uint32_t range[5] = {begin, begin + count / 2 / 2, mid,
                                            mid + (count - count / 2) / 2, end};
@@ -873,6 +882,7 @@ struct TopSplitter {
                 }
                 return;
             }
+            ++paths.two_way;
         }
         partition_top(cur, other, begin, mid, end, axis, split);
         out.lap(&BuildPhases::splits);
@@ -895,11 +905,11 @@ struct TopSplitter {
 /// when the caller lends 36n bytes it will overwrite afterwards (build_mesh_accel lends the
 /// triangle-vertex array it fills next), else from the block: fresh pages cost about 1.4 us each
 /// on this VM. `phases`, when given, gets the times of the centroids, the sorts and the splits,
-/// measured from `clock`.
+/// measured from `clock`. `paths`, when given, gets the ways the top nodes were split.
 template <class FillCentroids>
 Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
                 std::byte* lent = nullptr, BuildPhases* phases = nullptr,
-                PhaseClock* clock = nullptr) {
+                PhaseClock* clock = nullptr, MedianSplitPaths* paths = nullptr) {
     Bvh bvh;
     const uint32_t max_leaf = static_cast<uint32_t>(std::clamp(params.max_leaf_size, 1, 65535));
     bvh.prim_ids.resize(n);
@@ -931,6 +941,7 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
         // the keys that select_split and select_children gather: all of a node's when it has
         // fewer than 65,536
         const size_t capacity = std::max<size_t>(limit, 1u << 16);
+        MedianSplitPaths ignored;
         TempBlock block((lent ? 0 : 8 * TempBlock::bytes_for<uint32_t>(n)) +
                         6 * TempBlock::bytes_for<uint32_t>(limit) +
                         TempBlock::bytes_for<uint32_t>(2 * capacity) +
@@ -958,7 +969,8 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
                               block.take<uint32_t>(2 * capacity),
                               static_cast<uint32_t>(capacity),
                               block.take<uint32_t>(size_t(1) << 16),
-                              buffers[0].ids};
+                              buffers[0].ids,
+                              paths ? *paths : ignored};
         // the root's ids are its positions: not written, read as such
         const TopArrays root{nullptr, {buffers[0].c2[0], buffers[0].c2[1], buffers[0].c2[2]}};
         top.build(0, static_cast<uint32_t>(n), root, buffers[1]);
@@ -969,13 +981,17 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
 
 }  // namespace
 
-Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params) {
+Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params,
+                     MedianSplitPaths* paths) {
     if (prim_bounds.empty()) return {};
     const size_t n = prim_bounds.size();
-    Bvh bvh = median_tree(n, params, [&](float* const* c2) {
-        for (size_t i = 0; i < n; ++i)
-            for (int k = 0; k < 3; ++k) c2[k][i] = prim_bounds[i].lo[k] + prim_bounds[i].hi[k];
-    });
+    Bvh bvh = median_tree(
+        n, params,
+        [&](float* const* c2) {
+            for (size_t i = 0; i < n; ++i)
+                for (int k = 0; k < 3; ++k) c2[k][i] = prim_bounds[i].lo[k] + prim_bounds[i].hi[k];
+        },
+        nullptr, nullptr, nullptr, paths);
     const uint32_t* ids = bvh.prim_ids.data();
     finish_nodes(bvh.nodes, [&](Aabb& box, uint32_t first, uint32_t count) {
         for (uint32_t p = first; p < first + count; ++p) box.grow(prim_bounds[ids[p]]);

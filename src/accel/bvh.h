@@ -49,10 +49,22 @@ struct BuildParams {
     uint32_t median_subtree = uint32_t(1) << 17;
 };
 
+/// How a median-split build found the splits of its nodes above BuildParams::median_subtree,
+/// counted in nodes. Every way gives the same tree; tests use the counts to check that each way
+/// was taken.
+struct MedianSplitPaths {
+    uint32_t bracketed = 0;  ///< median found among the keys a sample bracketed
+    uint32_t radix = 0;      ///< the bracket held too many keys or missed: a radix select
+    uint32_t four_way = 0;   ///< both children's splits found first, four grandchildren made
+    uint32_t two_way = 0;    ///< both children above the limit too, but a child's bracket held
+                             ///< too many keys or missed its median: the two children made
+};
+
 /// Median split (the report's build): split along the longest axis of the centroid bounds at the
 /// median centroid (std::nth_element), equal halves, until a node has <= max_leaf_size
-/// primitives. O(n log n).
-Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params);
+/// primitives. O(n log n). `paths`, when given, gets the counts above.
+Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params,
+                     MedianSplitPaths* paths = nullptr);
 
 /// Entries of a traversal stack: no tree is deeper (a median-split tree over 2^32 primitives is
 /// 32 levels deep; the SAH build halves at the median from depth 31 on).

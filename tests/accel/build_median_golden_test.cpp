@@ -86,15 +86,20 @@ std::vector<Aabb> tied_boxes(size_t n, uint32_t seed) {
     return boxes;
 }
 
-void expect_same_as_reference(std::span<const Aabb> boxes, int leaf, const std::string& what,
-                              uint32_t subtree = BuildParams{}.median_subtree) {
-    const Bvh got =
-        build_bvh_median(boxes, BuildParams{.max_leaf_size = leaf, .median_subtree = subtree});
+/// Also returns how the build split its nodes above `subtree` (every way gives the same tree:
+/// the tests check which ways they reached).
+MedianSplitPaths expect_same_as_reference(std::span<const Aabb> boxes, int leaf,
+                                          const std::string& what,
+                                          uint32_t subtree = BuildParams{}.median_subtree) {
+    MedianSplitPaths paths;
+    const Bvh got = build_bvh_median(
+        boxes, BuildParams{.max_leaf_size = leaf, .median_subtree = subtree}, &paths);
     const Bvh want = test::MedianReference::build(boxes, leaf);
     EXPECT_EQ(first_difference(got, want), "")
         << what << " leaf=" << leaf << " subtree=" << subtree;
     EXPECT_EQ(check_bvh(got, boxes, leaf), "")
         << what << " leaf=" << leaf << " subtree=" << subtree;
+    return paths;
 }
 
 TEST(Sha256, MatchesTheFips180Examples) {
@@ -180,8 +185,9 @@ TEST(BuildMedianGolden, NodesSplitAboveTheSubtreeSizeGiveTheReferenceTree) {
 TEST(BuildMedianGolden, NodesOf65536OrMoreSplitAboveTheSubtreeSizeGiveTheReferenceTree) {
     // a node of 65,536 or more finds its median among the keys that a sample brackets, or by
     // a radix select when the bracket holds too many (equal keys) or misses the median (a
-    // sample of every 17th box, each far to the right of the others)
-    const size_t n = 70000;
+    // sample of every 17th box, each far to the right of the others); n is not a multiple of
+    // 16 (the scalar tails of the vector loops)
+    const size_t n = 70009;
     std::vector<Aabb> misleading = random_boxes(n, 6);
     for (size_t i = 0; i < n; i += n / 4096) misleading[i].lo.x = misleading[i].hi.x = 1e6f;
     const std::pair<std::string, std::vector<Aabb>> sets[] = {
@@ -189,28 +195,54 @@ TEST(BuildMedianGolden, NodesOf65536OrMoreSplitAboveTheSubtreeSizeGiveTheReferen
         {"tied", tied_boxes(n, 4)},
         {"equal", std::vector<Aabb>(n, Aabb{vec3(-1.0f), vec3(1.0f)})},
         {"misleading sample", misleading}};
-    for (const auto& [what, boxes] : sets) expect_same_as_reference(boxes, 4, what, 30000);
+    for (const auto& [what, boxes] : sets) {
+        const MedianSplitPaths paths = expect_same_as_reference(boxes, 4, what, 30000);
+        // the root (70,009) samples its keys; its children (35,004 and 35,005) are above the
+        // subtree size too, and select_children gathers all of their keys
+        const bool bracket_holds = what == "random" || what == "tied";
+        EXPECT_EQ(paths.bracketed, bracket_holds ? 1u : 0u) << what;
+        EXPECT_EQ(paths.radix, bracket_holds ? 0u : 1u) << what;
+        EXPECT_EQ(paths.four_way, 1u) << what;
+        EXPECT_EQ(paths.two_way, 0u) << what;
+    }
 }
 
 TEST(BuildMedianGolden, NodesWhoseChildrenSplitOnTheirOwnGiveTheReferenceTree) {
     // a node whose children are both above the subtree size finds their splits from a sample
     // of its own keys and partitions its four grandchildren at once, or, when a child's
     // bracket holds too many keys (equal keys) or misses its median (a sample of boxes each at
-    // one end of x, the axis of the node and of its children), partitions its two children
-    const size_t n = 300000;
-    std::vector<Aabb> misleading = random_boxes(n, 9);
-    for (size_t i = 0; i < n; ++i) {
-        misleading[i].lo.x *= 10.0f;
-        misleading[i].hi.x = misleading[i].lo.x;
-    }
-    for (size_t i = 0; i < n; i += n / 8192)
-        misleading[i].lo.x = misleading[i].hi.x = (i / (n / 8192)) % 2 ? 99.9f : -99.9f;
+    // one end of x, the axis of the node and of its children; or only the second child's
+    // sample at its far end), partitions its two children; n is not a multiple of 16 (the
+    // scalar tails of the vector loops)
+    const size_t n = 300011, step = n / 8192;  // select_children's sample: every step-th box
+    const auto spread_x = [](std::vector<Aabb> boxes) {
+        for (Aabb& b : boxes) b.hi.x = b.lo.x = 10.0f * b.lo.x;
+        return boxes;
+    };
+    std::vector<Aabb> misleading = spread_x(random_boxes(n, 9));
+    for (size_t i = 0; i < n; i += step)
+        misleading[i].lo.x = misleading[i].hi.x = (i / step) % 2 ? 99.9f : -99.9f;
+    std::vector<Aabb> second_misleading = spread_x(random_boxes(n, 10));
+    for (size_t i = 0; i < n; i += step)
+        if (second_misleading[i].lo.x > 0.0f)  // the second child's (no lower median than 0)
+            second_misleading[i].lo.x = second_misleading[i].hi.x = 99.9f;
     const std::pair<std::string, std::vector<Aabb>> sets[] = {
         {"random", random_boxes(n, 7)},
         {"tied", tied_boxes(n, 8)},
         {"equal", std::vector<Aabb>(n, Aabb{vec3(-1.0f), vec3(1.0f)})},
-        {"misleading sample", misleading}};
-    for (const auto& [what, boxes] : sets) expect_same_as_reference(boxes, 4, what, 60000);
+        {"misleading sample", misleading},
+        {"second child's sample misleading", second_misleading}};
+    for (const auto& [what, boxes] : sets) {
+        const MedianSplitPaths paths = expect_same_as_reference(boxes, 4, what, 60000);
+        // the root (300,011) has children above 60,000, its grandchildren (75,002 or 75,003)
+        // do not; when the root makes its two children, each of them tries the four-way
+        // partition on its own (and the misleading samples were the root's)
+        const uint32_t four_way = what == "random" || what == "tied" ? 1u
+                                  : what == "equal"                  ? 0u
+                                                                     : 2u;
+        EXPECT_EQ(paths.four_way, four_way) << what;
+        EXPECT_EQ(paths.two_way, what == "equal" ? 3u : four_way == 1u ? 0u : 1u) << what;
+    }
 }
 
 TEST(BuildMedianGolden, MoreThanTheDefaultSubtreeSizeGivesTheReferenceTree) {
@@ -271,6 +303,26 @@ TEST(BuildMedianGolden, LargeAndSmallMagnitudesAndInfinitiesGiveTheReferenceTree
     for (size_t i = 3; i < boxes.size(); i += 11) boxes[i].hi.z = infinity;
     for (size_t i = 5; i < boxes.size(); i += 13) boxes[i].lo.x = boxes[i].hi.x = 1e-40f;
     for (int leaf : {1, 4}) expect_same_as_reference(boxes, leaf, "extremes");
+}
+
+TEST(BuildMedianGolden, NanCentroidsGiveTheReferenceTree) {
+    // a box infinite both ways on an axis has a NaN centroid there (-inf + inf, whose sign bit
+    // is set on x86: below every key), a box of NaNs a NaN without it (above every key); in
+    // small nodes, in nodes split on their own, and in nodes whose children are
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (size_t n : {size_t(5000), size_t(70009)}) {
+        std::vector<Aabb> boxes = random_boxes(n, 12);
+        for (size_t i = 0; i < n; i += 5) boxes[i].lo.x = -infinity, boxes[i].hi.x = infinity;
+        for (size_t i = 2; i < n; i += 9) boxes[i].lo.y = boxes[i].hi.y = nan;
+        for (size_t i = 4; i < n; i += 4) boxes[i].lo.z = boxes[i].hi.z = -nan;
+        const Bvh want = test::MedianReference::build(boxes, 4);
+        for (uint32_t subtree : {1u, 100u, 30000u, BuildParams{}.median_subtree}) {
+            if (n == 5000 && subtree >= 30000u) continue;
+            // only the trees are compared: no box contains a box of NaNs (check_bvh)
+            const Bvh got = build_bvh_median(boxes, BuildParams{.median_subtree = subtree});
+            EXPECT_EQ(first_difference(got, want), "") << "n=" << n << " subtree=" << subtree;
+        }
+    }
 }
 
 }  // namespace
