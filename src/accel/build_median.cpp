@@ -755,7 +755,9 @@ std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uin
     BracketGather g[2] = {
         {bracket_of_sample(taken[0], samples[0], size[0] / 2, size[0]), keys, capacity},
         {bracket_of_sample(taken[1], samples[1], size[1] / 2, size[1]), keys + capacity, capacity}};
-    for (int side = 0; side < 2; ++side)  // too few samples (keys equal to the split): all keys
+    // a bracket of every key (too few samples, most keys equal to the split; or samples at
+    // both ends of the keys) gathers the child's every key: too many for the buffer
+    for (int side = 0; side < 2; ++side)
         if (g[side].b.lo == 0 && g[side].b.hi == ~0u && size[side] > capacity) return std::nullopt;
     SplitSweep sweep{split};
     bool fits = true;

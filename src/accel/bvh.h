@@ -49,15 +49,17 @@ struct BuildParams {
     uint32_t median_subtree = uint32_t(1) << 17;
 };
 
-/// How a median-split build found the splits of its nodes above BuildParams::median_subtree,
-/// counted in nodes. Every way gives the same tree; tests use the counts to check that each way
-/// was taken.
+/// How a median-split build found the splits of its nodes above BuildParams::median_subtree.
+/// Every way gives the same tree; tests use the counts to check that each way was taken.
+/// `bracketed` and `radix` count the nodes that select their own split (not the children whose
+/// splits a four-way step found); `four_way` and `two_way` count the nodes whose children are
+/// both above the limit too.
 struct MedianSplitPaths {
     uint32_t bracketed = 0;  ///< median found among the keys a sample bracketed
     uint32_t radix = 0;      ///< the bracket held too many keys or missed: a radix select
     uint32_t four_way = 0;   ///< both children's splits found first, four grandchildren made
-    uint32_t two_way = 0;    ///< both children above the limit too, but a child's bracket held
-                             ///< too many keys or missed its median: the two children made
+    uint32_t two_way = 0;    ///< a child's bracket held too many keys or missed its median: the
+                             ///< two children made, each then split on its own
 };
 
 /// Median split (the report's build): split along the longest axis of the centroid bounds at the

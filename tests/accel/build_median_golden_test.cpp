@@ -224,7 +224,7 @@ TEST(BuildMedianGolden, NodesWhoseChildrenSplitOnTheirOwnGiveTheReferenceTree) {
         misleading[i].lo.x = misleading[i].hi.x = (i / step) % 2 ? 99.9f : -99.9f;
     std::vector<Aabb> second_misleading = spread_x(random_boxes(n, 10));
     for (size_t i = 0; i < n; i += step)
-        if (second_misleading[i].lo.x > 0.0f)  // the second child's (no lower median than 0)
+        if (second_misleading[i].lo.x > 0.0f)  // right of the root's median, which is near 0
             second_misleading[i].lo.x = second_misleading[i].hi.x = 99.9f;
     const std::pair<std::string, std::vector<Aabb>> sets[] = {
         {"random", random_boxes(n, 7)},
@@ -234,14 +234,21 @@ TEST(BuildMedianGolden, NodesWhoseChildrenSplitOnTheirOwnGiveTheReferenceTree) {
         {"second child's sample misleading", second_misleading}};
     for (const auto& [what, boxes] : sets) {
         const MedianSplitPaths paths = expect_same_as_reference(boxes, 4, what, 60000);
-        // the root (300,011) has children above 60,000, its grandchildren (75,002 or 75,003)
-        // do not; when the root makes its two children, each of them tries the four-way
-        // partition on its own (and the misleading samples were the root's)
-        const uint32_t four_way = what == "random" || what == "tied" ? 1u
-                                  : what == "equal"                  ? 0u
-                                                                     : 2u;
+        // the root (300,011) and its children (150,005 and 150,006) are above 60,000, and so
+        // are its grandchildren (75,002 or 75,003), whose children are not. A four-way root
+        // leaves four grandchildren that select their own splits (5 selects); a two-way root
+        // leaves two children that do (3), and each tries the four-way step on its own (the
+        // misleading samples were the root's): when it fails too (equal keys), the
+        // grandchildren select theirs (7)
+        const bool misleading_sets = what != "random" && what != "tied" && what != "equal";
+        const uint32_t four_way = misleading_sets ? 2u : what == "equal" ? 0u : 1u;
         EXPECT_EQ(paths.four_way, four_way) << what;
         EXPECT_EQ(paths.two_way, what == "equal" ? 3u : four_way == 1u ? 0u : 1u) << what;
+        EXPECT_EQ(paths.bracketed + paths.radix, misleading_sets   ? 3u
+                                                 : what == "equal" ? 7u
+                                                                   : 5u)
+            << what;
+        EXPECT_EQ(paths.radix, what == "equal" ? 7u : 0u) << what;
     }
 }
 
