@@ -314,8 +314,8 @@ TEST(BuildMedianGolden, LargeAndSmallMagnitudesAndInfinitiesGiveTheReferenceTree
 
 TEST(BuildMedianGolden, NanCentroidsGiveTheReferenceTree) {
     // a box infinite both ways on an axis has a NaN centroid there (-inf + inf, whose sign bit
-    // is set on x86: below every key), a box of NaNs a NaN without it (above every key); in
-    // small nodes, in nodes split on their own, and in nodes whose children are
+    // is set on x86: below every key), a box of NaNs one of their sign (+NaN above every key,
+    // -NaN below); in small nodes, in nodes split on their own, and in nodes whose children are
     const float nan = std::numeric_limits<float>::quiet_NaN();
     for (size_t n : {size_t(5000), size_t(70009)}) {
         std::vector<Aabb> boxes = random_boxes(n, 12);
