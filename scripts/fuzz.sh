@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzing (issue #5): builds the fuzz preset (clang, libFuzzer + ASan + UBSan) and runs every
+# Fuzzing: builds the fuzz preset (clang, libFuzzer + ASan + UBSan) and runs every
 # tests/fuzz/fuzz_<name> program, starting from a copy of tests/fuzz/corpus/<name>/ after
 # replaying tests/fuzz/regressions/<name>/.
 #

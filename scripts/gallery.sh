@@ -16,6 +16,10 @@ if [[ ! -x "$raylane" ]]; then
     exit 1
 fi
 
+# The Stanford models and the textures: the shared folder beside the checkout, when it is there.
+shared="$(cd .. && pwd)/shared"
+[ -d "$shared/models" ] && export RAYLANE_MODEL_PATH="$shared/models:$shared/textures${RAYLANE_MODEL_PATH:+:$RAYLANE_MODEL_PATH}"
+
 out=docs/gallery
 mkdir -p "$out"
 
@@ -53,7 +57,7 @@ render() {
 }
 
 # The fastest of `runs` renders (the same image each time): one render's time varies by 10-15 %
-# on this shared machine. Usage: best_ms OUTPUT RAYLANE-RENDER-ARGS...
+# on a shared machine. Usage: best_ms OUTPUT RAYLANE-RENDER-ARGS...
 runs=3
 best_ms() {
     local output="$1" best="" ms

@@ -4,6 +4,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
+# The Stanford models and the textures: the shared folder beside the checkout, when it is there.
+shared="$(cd .. && pwd)/shared"
+[ -d "$shared/models" ] && export RAYLANE_MODEL_PATH="$shared/models:$shared/textures${RAYLANE_MODEL_PATH:+:$RAYLANE_MODEL_PATH}"
 cmake --preset release >/dev/null
 cmake --build --preset release --target raylane
 mkdir -p out

@@ -14,15 +14,13 @@
 # full build of it, at -O1, with the typed tests at the SIMD widths only (RAYLANE_TEST_WIDTHS=simd:
 # W = 1, the scalar width, does not depend on the instruction set and the release build tests
 # it). These builds check answers, not speed: -O1 takes the same code paths as -O3 (no
-# fast-math, no contraction either way). With these choices, and no raylane binary to build,
-# this step took 317–379 s in fresh-clone CI runs instead of 601 s (2026-12-03), and less again
-# with the test programs built as unity builds (batches of 8); README.md has the current times.
+# fast-math, no contraction either way), and builds in about half the time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 presets=("$@")
 [ ${#presets[@]} -gt 0 ] || presets=(avx2 sse4)
-programs=(tests_simd tests_equivalence tests_shade tests_numerics tests_accel tests_render)
+programs=(tests_simd tests_traverse tests_shade tests_numerics tests_accel tests_render)
 for preset in "${presets[@]}"; do
     dir="build/$preset-tests"
     echo "== $preset (${programs[*]})" >&2

@@ -37,7 +37,7 @@ inline constexpr int native_width = 1;
 
 namespace simd_detail {
 // The xsimd architecture behind each width; void where this build's ISA cannot run it. The FMA
-// variants matter only for xsimd's own kernels: fma() in math.h issues FMA instructions itself.
+// variants matter only for xsimd's own kernels: fma() in math.h emits FMA instructions itself.
 #if XSIMD_WITH_AVX512BW
 using Arch16 = xsimd::avx512bw;
 #elif XSIMD_WITH_AVX512F

@@ -224,13 +224,13 @@ void print_phases(const bench::Measured& m, std::ostream& out) {
         << bench::figure_text(nlogn(2), "%.2fx") << " |\n";
     out << "\nThe sum leaves out freeing the BVH and its vertices after each build, which the "
            "repeated build's time includes (the splits include freeing the temporaries). A phase "
-           "that grows more than its order allows pays for memory (on the "
-           "development machine the 1.6M build's arrays outgrow the 32 MiB L3: "
-           "docs/performance.md).\n";
+           "that grows more than its order allows pays for memory (the 1.6M build's arrays "
+           "outgrow a 32 MiB L3: docs/performance.md).\n";
 }
 
 /// `--summary`: build times (medians), their growth per 4x more triangles against n log n, and
-/// issue #2's targets (the 100k dragon under 15 ms on one thread; growth no faster than n log n).
+/// the build's targets (the 100k dragon under 15 ms on one thread; growth no faster than
+/// n log n).
 /// With 5 or more repetitions a step's growth gets a 95 % bootstrap interval, and the step is
 /// judged by it: met when the whole interval is within n log n, not met when it is wholly over,
 /// undecided when it spans the line (more repetitions narrow it).
@@ -282,11 +282,11 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
                                  : steps_within == steps ? "met"
                                  : steps_over > 0        ? "not met"
                                                          : "undecided";
-    out << "\nTargets of issue #2: the 100k dragon built in under 15 ms on one thread: "
+    out << "\nTargets:\n- build time, 100k-triangle dragon, one thread < 15 ms: "
         << bench::verdict_below(small, 15.0) << " (" << bench::figure_text(small, "%.1f ms")
-        << "); repeated builds growing no faster than n log n at each 4x step up to 1.6M: "
-        << growth_verdict
-        << ". A step with 5 or more repetitions of both sizes is judged by its interval (undecided "
+        << ")\n- build time growth per 4x triangles, up to 1.6M <= n log n: " << growth_verdict
+        << "\n\n"
+        << "A step with 5 or more repetitions of both sizes is judged by its interval (undecided "
            "while it spans the line: more repetitions narrow it), otherwise by its medians. First "
            "builds are one per process only when each size runs alone "
            "(--benchmark_filter=BM_BuildMedianFirst/dragon_1600k). The sizes run one after the "

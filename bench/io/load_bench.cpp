@@ -47,7 +47,7 @@ BENCHMARK(BM_LoadObj_Dragon)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LoadPly_Dragon)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LoadPly_Bunny)->Unit(benchmark::kMillisecond);
 
-/// `--summary`: load times (medians) and issue #2's targets (dragon.obj < 30 ms, dragon.ply
+/// `--summary`: load times (medians) and the loaders' targets (dragon.obj < 30 ms, dragon.ply
 /// < 10 ms).
 void print_summary(const bench::Measured& m, std::ostream& out) {
     struct Row {
@@ -58,7 +58,7 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
     const Row rows[3] = {{"BM_LoadObj_Dragon", "dragon.obj", 30.0},
                          {"BM_LoadPly_Dragon", "dragon.ply", 10.0},
                          {"BM_LoadPly_Bunny", "bunny.ply", 0.0}};
-    out << "Median of the repetitions\n\n| file | time | target (issue #2) |\n|---|---:|---|\n";
+    out << "Median of the repetitions\n\n| file | time | target: load time |\n|---|---:|---|\n";
     for (const Row& row : rows) {
         const std::optional<double> ms = m.median_ms(row.name);
         out << "| " << row.file << " | " << bench::figure_text(ms, "%.1f ms") << " | ";

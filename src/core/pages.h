@@ -30,8 +30,8 @@ inline constexpr size_t large_block_bytes = size_t(2) << 20;
 
 /// A block of `bytes` rounded up to whole huge pages (2 MiB), aligned to one and advised as
 /// transparent huge pages, so that its first touch costs one page fault per 2 MiB instead of
-/// one per 4 KiB: on this VM a 25 MB film written by two threads takes 26–29 ms of page faults
-/// that way against 42–60 ms (docs/performance.md, "The whole command"). Where the kernel gives
+/// one per 4 KiB: a 25 MB film written by two threads took 26–29 ms of page faults that way
+/// against 42–60 ms (docs/performance.md). Where the kernel gives
 /// no huge pages it is an ordinary mapping. A block of the same size given back earlier is
 /// taken first, its pages already in: its contents are unspecified. Throws std::bad_alloc.
 std::byte* map_pages(size_t bytes);
@@ -43,7 +43,7 @@ void unmap_pages(std::byte* block, size_t bytes) noexcept;
 /// Makes glibc's malloc keep what is freed: blocks up to 32 MiB come from the heap, which is
 /// never trimmed. By default it maps blocks over a threshold that moves with what was freed last
 /// and returns the heap's top to the kernel, so memory freed by one phase (the loader's, the
-/// build's) is faulted in again by the next, at 6–15 us a page on this VM: `raylane render
+/// build's) is faulted in again by the next, at 6–15 us a page where measured: `raylane render
 /// scenes/dragon.json` takes 0.12 s with it and 0.12–0.17 s without. Called first by raylane's
 /// main and by every benchmark program, so that they measure the same heap.
 void keep_freed_memory();

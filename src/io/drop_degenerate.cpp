@@ -2,7 +2,7 @@
 #include "io/drop_degenerate.h"
 
 #include "core/error.h"
-#include "traverse/triangle_scalar.h"
+#include "core/triangle_area.h"
 
 namespace raylane {
 

@@ -24,7 +24,7 @@
 #include "io/model_path.h"
 #include "scene/mesh_normals.h"
 #include "scene/transform.h"
-#include "shade/brdf_presets.h"
+#include "scene/brdf_presets.h"
 
 namespace raylane {
 

@@ -53,14 +53,6 @@ std::vector<std::string> model_search_dirs(const std::string& scene_dir) {
             list = colon == std::string_view::npos ? std::string_view() : list.substr(colon + 1);
         }
     }
-    add_dir(dirs, fs::path(RAYLANE_SOURCE_DIR "/../shared/models"));
-    add_dir(dirs, fs::path(RAYLANE_SOURCE_DIR "/../shared/textures"));
-    std::error_code error;
-    fs::path cwd = fs::current_path(error);
-    if (!error) {
-        add_dir(dirs, cwd / "../shared/models");
-        add_dir(dirs, cwd / "../shared/textures");
-    }
     return dirs;
 }
 

@@ -7,10 +7,8 @@
 namespace raylane {
 
 /// The folders find_model searches for a relative name, in order, without duplicates:
-/// `scene_dir` ("." when empty); each non-empty entry of RAYLANE_MODEL_PATH (':'-separated);
-/// RAYLANE_SOURCE_DIR "/../shared/models" and "/../shared/textures" (the checkout's sibling);
-/// and "../shared/models" and "../shared/textures" under the current working directory.
-/// Textures and environment maps are looked up the same way.
+/// `scene_dir` ("." when empty), then each non-empty entry of RAYLANE_MODEL_PATH
+/// (':'-separated). Textures and environment maps are looked up the same way.
 std::vector<std::string> model_search_dirs(const std::string& scene_dir);
 
 /// What find_model looks for: the not-found error of a model says where to get the Stanford

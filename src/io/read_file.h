@@ -10,7 +10,7 @@ namespace raylane {
 
 /// The bytes of a file, for as long as the object lives: a read-only mapping of a regular file
 /// (no copy and no fresh memory: its pages are the page cache's; a 3 MB model maps in 2 ms
-/// where reading it into new memory takes 10–18 ms on this VM), else the bytes read into a
+/// where reading it into new memory took 10–18 ms), else the bytes read into a
 /// string (pipes, devices, empty files). A mapped file that another program truncates while it
 /// is being parsed ends the process with SIGBUS, as in every program that maps its input.
 class FileBytes {

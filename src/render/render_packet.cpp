@@ -10,7 +10,7 @@
 
 #include "core/rng.h"
 #include "render/camera_rays_packet.h"
-#include "render/path_queue.h"
+#include "shade/path_queue.h"
 #include "render/sample_sum_packet.h"
 #include "render/tiles.h"
 #include "scene/features.h"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/ray_packet.h"
-#include "render/path_queue.h"
+#include "shade/path_queue.h"
 #include "shade/shade_scalar.h"
 #include "simd/hash.h"
 #include "simd/lanes.h"

@@ -14,7 +14,7 @@
 #include "core/offset_packet.h"
 #include "core/ray_packet.h"
 #include "core/rng.h"
-#include "render/path_queue.h"
+#include "shade/path_queue.h"
 #include "scene/features.h"
 #include "scene/mesh_normals.h"
 #include "scene/scene.h"

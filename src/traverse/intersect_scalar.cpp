@@ -63,34 +63,28 @@ float intersect_analytic(const Scene& scene, const Object& object, const Ray& ra
     return infinity;
 }
 
-// mesh: closest hit over one mesh's BVH, near child first.
-void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const Ray& ray, Hit& hit,
-                            TraversalStats& stats) {
-    if (mesh.bvh.nodes.empty()) return;
-    const WatertightRay wr = make_watertight_ray(ray);
+/// Depth-first traversal of a flat binary BVH: every node whose box the ray enters within
+/// [t_min, limit()) is visited, the first child first, or the nearer child first by the ray's
+/// direction on the node's split axis when `near_first`. `leaf(first, count)` tests a leaf's
+/// primitives and returns true to end the traversal; traverse returns whether one did.
+template <bool near_first, typename Limit, typename Leaf>
+bool traverse(const Bvh& bvh, const Ray& ray, const Limit& limit, const Leaf& leaf,
+              TraversalStats& stats) {
+    if (bvh.nodes.empty()) return false;
     const SlabRay sr = make_slab_ray(ray);
     const int dir_neg[3] = {ray.dir.x < 0.0f, ray.dir.y < 0.0f, ray.dir.z < 0.0f};
     uint32_t stack[traversal_stack_size];
     int top = 0;
     uint32_t node_index = 0;
     for (;;) {
-        const BvhNode& node = mesh.bvh.nodes[node_index];
+        const BvhNode& node = bvh.nodes[node_index];
         ++stats.nodes_visited;
         float t_near;
         const vec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
-        if (intersect_slab(sr, lo, hi, ray.t_min, t_limit(ray, hit), t_near)) {
+        if (intersect_slab(sr, lo, hi, ray.t_min, limit(), t_near)) {
             if (node.is_leaf()) {
-                for (uint32_t k = node.index; k < node.index + node.count; ++k) {
-                    ++stats.prims_tested;
-                    const TriangleVerts& tv = mesh.verts[k];
-                    float t, u, v;
-                    if (intersect_triangle(wr, tv.a, tv.b, tv.c, ray.t_min, t_limit(ray, hit), t, u,
-                                           v) &&
-                        better(t, object, mesh.bvh.prim_ids[k], hit)) {
-                        hit = {t, mesh.bvh.prim_ids[k], object, vec2(u, v)};
-                    }
-                }
-            } else if (dir_neg[node.axis]) {  // second child is nearer
+                if (leaf(node.index, node.count)) return true;
+            } else if (near_first && dir_neg[node.axis]) {  // second child is nearer
                 stack[top++] = node_index + 1;
                 node_index = node.index;
                 continue;
@@ -100,42 +94,46 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const Ray& r
                 continue;
             }
         }
-        if (top == 0) break;
+        if (top == 0) return false;
         node_index = stack[--top];
     }
 }
 
-bool intersect_mesh_any(const MeshAccel& mesh, const Ray& ray, TraversalStats& stats) {
-    if (mesh.bvh.nodes.empty()) return false;
+// mesh: closest hit over one mesh's BVH, near child first.
+void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const Ray& ray, Hit& hit,
+                            TraversalStats& stats) {
     const WatertightRay wr = make_watertight_ray(ray);
-    const SlabRay sr = make_slab_ray(ray);
-    uint32_t stack[traversal_stack_size];
-    int top = 0;
-    uint32_t node_index = 0;
-    for (;;) {
-        const BvhNode& node = mesh.bvh.nodes[node_index];
-        ++stats.nodes_visited;
-        float t_near;
-        const vec3 lo(node.lo[0], node.lo[1], node.lo[2]), hi(node.hi[0], node.hi[1], node.hi[2]);
-        if (intersect_slab(sr, lo, hi, ray.t_min, ray.t_max, t_near)) {
-            if (node.is_leaf()) {
-                for (uint32_t k = node.index; k < node.index + node.count; ++k) {
-                    ++stats.prims_tested;
-                    const TriangleVerts& tv = mesh.verts[k];
-                    float t, u, v;
-                    if (intersect_triangle(wr, tv.a, tv.b, tv.c, ray.t_min, ray.t_max, t, u, v))
-                        return true;
-                }
-            } else {
-                stack[top++] = node.index;
-                node_index = node_index + 1;
-                continue;
+    auto limit = [&] { return t_limit(ray, hit); };
+    auto leaf = [&](uint32_t first, uint32_t count) {
+        for (uint32_t k = first; k < first + count; ++k) {
+            ++stats.prims_tested;
+            const TriangleVerts& tv = mesh.verts[k];
+            float t, u, v;
+            if (intersect_triangle(wr, tv.a, tv.b, tv.c, ray.t_min, t_limit(ray, hit), t, u, v) &&
+                better(t, object, mesh.bvh.prim_ids[k], hit)) {
+                hit = {t, mesh.bvh.prim_ids[k], object, vec2(u, v)};
             }
         }
-        if (top == 0) break;
-        node_index = stack[--top];
-    }
-    return false;
+        return false;
+    };
+    traverse<true>(mesh.bvh, ray, limit, leaf, stats);
+}
+
+// mesh: any hit over one mesh's BVH.
+bool intersect_mesh_any(const MeshAccel& mesh, const Ray& ray, TraversalStats& stats) {
+    const WatertightRay wr = make_watertight_ray(ray);
+    auto limit = [&] { return ray.t_max; };
+    auto leaf = [&](uint32_t first, uint32_t count) {
+        for (uint32_t k = first; k < first + count; ++k) {
+            ++stats.prims_tested;
+            const TriangleVerts& tv = mesh.verts[k];
+            float t, u, v;
+            if (intersect_triangle(wr, tv.a, tv.b, tv.c, ray.t_min, ray.t_max, t, u, v))
+                return true;
+        }
+        return false;
+    };
+    return traverse<false>(mesh.bvh, ray, limit, leaf, stats);
 }
 
 void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t object_index,
@@ -170,37 +168,13 @@ Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
     Hit hit;
     for (uint32_t object : accel.unbounded)
         intersect_object_closest(scene, accel, object, ray, hit, stats);
-    if (!accel.top.nodes.empty()) {
-        const SlabRay sr = make_slab_ray(ray);
-        const int dir_neg[3] = {ray.dir.x < 0.0f, ray.dir.y < 0.0f, ray.dir.z < 0.0f};
-        uint32_t stack[traversal_stack_size];
-        int top = 0;
-        uint32_t node_index = 0;
-        for (;;) {
-            const BvhNode& node = accel.top.nodes[node_index];
-            ++stats.nodes_visited;
-            float t_near;
-            const vec3 lo(node.lo[0], node.lo[1], node.lo[2]);
-            const vec3 hi(node.hi[0], node.hi[1], node.hi[2]);
-            if (intersect_slab(sr, lo, hi, ray.t_min, t_limit(ray, hit), t_near)) {
-                if (node.is_leaf()) {
-                    for (uint32_t k = node.index; k < node.index + node.count; ++k)
-                        intersect_object_closest(scene, accel, accel.top.prim_ids[k], ray, hit,
-                                                 stats);
-                } else if (dir_neg[node.axis]) {
-                    stack[top++] = node_index + 1;
-                    node_index = node.index;
-                    continue;
-                } else {
-                    stack[top++] = node.index;
-                    node_index = node_index + 1;
-                    continue;
-                }
-            }
-            if (top == 0) break;
-            node_index = stack[--top];
-        }
-    }
+    auto limit = [&] { return t_limit(ray, hit); };
+    auto leaf = [&](uint32_t first, uint32_t count) {
+        for (uint32_t k = first; k < first + count; ++k)
+            intersect_object_closest(scene, accel, accel.top.prim_ids[k], ray, hit, stats);
+        return false;
+    };
+    traverse<true>(accel.top, ray, limit, leaf, stats);
     if (stats_out) {
         stats_out->nodes_visited += stats.nodes_visited;
         stats_out->prims_tested += stats.prims_tested;
@@ -218,32 +192,15 @@ bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
             break;
         }
     }
-    if (!found && !accel.top.nodes.empty()) {
-        const SlabRay sr = make_slab_ray(ray);
-        uint32_t stack[traversal_stack_size];
-        int top = 0;
-        uint32_t node_index = 0;
-        for (;;) {
-            const BvhNode& node = accel.top.nodes[node_index];
-            ++stats.nodes_visited;
-            float t_near;
-            const vec3 lo(node.lo[0], node.lo[1], node.lo[2]);
-            const vec3 hi(node.hi[0], node.hi[1], node.hi[2]);
-            if (intersect_slab(sr, lo, hi, ray.t_min, ray.t_max, t_near)) {
-                if (node.is_leaf()) {
-                    for (uint32_t k = node.index; k < node.index + node.count && !found; ++k)
-                        found =
-                            intersect_object_any(scene, accel, accel.top.prim_ids[k], ray, stats);
-                    if (found) break;
-                } else {
-                    stack[top++] = node.index;
-                    node_index = node_index + 1;
-                    continue;
-                }
-            }
-            if (top == 0) break;
-            node_index = stack[--top];
-        }
+    if (!found) {
+        auto limit = [&] { return ray.t_max; };
+        auto leaf = [&](uint32_t first, uint32_t count) {
+            for (uint32_t k = first; k < first + count; ++k)
+                if (intersect_object_any(scene, accel, accel.top.prim_ids[k], ray, stats))
+                    return true;
+            return false;
+        };
+        found = traverse<false>(accel.top, ray, limit, leaf, stats);
     }
     if (stats_out) {
         stats_out->nodes_visited += stats.nodes_visited;

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/ray.h"
+#include "core/triangle_area.h"
 #include "traverse/local_geometry.h"
 
 namespace raylane {
@@ -44,14 +45,6 @@ inline WatertightRayOf<T> make_watertight_ray(const RayOf<T>& ray) {
 }
 inline WatertightRay make_watertight_ray(const Ray& ray) {
     return make_watertight_ray<float>(ray_of<float>(ray));
-}
-
-/// True when the three vertices span no area: their cross product is exactly zero, computed in
-/// double from double differences (exact for any mesh whose edge vectors fit in 26 bits).
-template <typename T>
-inline bool is_zero_area_triangle(Vec3Of<T> a, Vec3Of<T> b, Vec3Of<T> c) {
-    const glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
-    return n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
 }
 
 /// x y - z w to within 2 units of roundoff of the exact value, so with its sign and exactly 0 only

@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "accel/bvh.h"
-#include "accel/random_boxes.h"
+#include "support/random_boxes.h"
 
 namespace raylane {
 namespace {

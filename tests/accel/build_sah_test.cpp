@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "accel/bvh.h"
-#include "accel/random_boxes.h"
+#include "support/random_boxes.h"
 #include "io/load_mesh.h"
 
 namespace raylane {
@@ -108,7 +108,7 @@ TEST(BuildSah, ExponentialCentroidsStayWithinTheTraversalStack) {
 }
 
 /// On the dragon the SAH tree has a lower SAH cost than the median split's, in the same memory
-/// budget (issue #3: at most 64 bytes per triangle with the triangle data).
+/// budget (at most 64 bytes per triangle with the triangle data).
 TEST(BuildSah, DragonTreeIsCheaperThanTheMedianSplitInTheSameMemory) {
     const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/dragon.ply";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "app/cli_run.h"
+#include "support/cli_run.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "app/cli_run.h"
+#include "support/cli_run.h"
 #include "support/temp_dir.h"
 
 namespace {

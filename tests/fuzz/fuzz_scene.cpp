@@ -104,7 +104,8 @@ void check_scene(const Scene& scene) {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-    unsetenv("RAYLANE_MODEL_PATH");  // model lookup: the fixtures, then the shared models only
+    // model lookup: the fixtures' folder, then the shared models only
+    setenv("RAYLANE_MODEL_PATH", RAYLANE_SHARED_DIR "/models:" RAYLANE_SHARED_DIR "/textures", 1);
     return 0;
 }
 

@@ -1,4 +1,4 @@
-// tests for io/model_path.cpp: search order, RAYLANE_MODEL_PATH, the checkout fallback and the
+// tests for io/model_path.cpp: search order, RAYLANE_MODEL_PATH (no folder of the source tree) and the
 // not-found message.
 #include "io/model_path.h"
 
@@ -96,21 +96,20 @@ TEST(FindModel, ListsSearchFoldersInTheDocumentedOrder) {
     TempDirs dirs;
     ModelPathEnv env((dirs.dir("b") + ":" + dirs.dir("c") + ":" + dirs.dir("b")).c_str());
     std::vector<std::string> got = model_search_dirs(dirs.dir("a"));
-    ASSERT_GE(got.size(), 4u);
+    ASSERT_EQ(got.size(), 3u);
     EXPECT_EQ(got[0], dirs.dir("a"));
     EXPECT_EQ(got[1], dirs.dir("b"));
     EXPECT_EQ(got[2], dirs.dir("c"));  // the repeated b is listed once
-    EXPECT_EQ(got[3], fs::path(RAYLANE_SOURCE_DIR "/../shared/models").lexically_normal().string());
     EXPECT_EQ(model_search_dirs("")[0], ".");
 }
 
-TEST(FindModel, FallsBackToTheSharedModelsNextToTheCheckout) {
-    const fs::path shared = fs::path(RAYLANE_SOURCE_DIR "/../shared/models/dragon.ply");
-    if (!fs::exists(shared)) GTEST_SKIP() << shared << " not present";
+TEST(FindModel, SearchesOnlyTheSceneFolderWithoutTheVariable) {
+    // The binary knows no folder of the source tree: without RAYLANE_MODEL_PATH, a model beside
+    // the checkout (../shared/models) is not found from another folder.
     TempDirs dirs;
     ModelPathEnv env(nullptr);
-    std::string found = find_model("dragon.ply", dirs.dir("a"));
-    EXPECT_TRUE(fs::equivalent(found, shared)) << found;
+    EXPECT_EQ(model_search_dirs(dirs.dir("a")), std::vector<std::string>{dirs.dir("a")});
+    EXPECT_THROW(find_model("dragon.ply", dirs.dir("a")), InputError);
 }
 
 TEST(FindModel, NamesTheModelEveryFolderAndWhereToGetItWhenMissing) {
@@ -126,7 +125,7 @@ TEST(FindModel, NamesTheModelEveryFolderAndWhereToGetItWhenMissing) {
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     for (const std::string& part :
          {std::string("no_such_model.ply"), dirs.dir("a"), dirs.dir("b"), dirs.dir("c"),
-          std::string("shared/models"), std::string("Stanford 3D Scanning Repository"),
+          std::string("Stanford 3D Scanning Repository"),
           std::string("RAYLANE_MODEL_PATH")}) {
         EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
     }

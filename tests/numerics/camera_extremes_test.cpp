@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 #include "io/load_scene.h"
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "render/camera_rays.h"
 #include "render/camera_rays_packet.h"
 

@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "traverse/cylinder_packet.h"
 #include "traverse/cylinder_scalar.h"
 

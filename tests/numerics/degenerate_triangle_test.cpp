@@ -10,7 +10,7 @@
 #include "core/error.h"
 #include "io/load_obj.h"
 #include "io/load_ply.h"
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "render/camera_rays.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"

@@ -10,7 +10,7 @@
 
 #include "accel/bvh.h"
 #include "io/load_scene.h"
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "render/camera_rays.h"
 
 namespace raylane {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "numerics/chi_square.h"
+#include "support/chi_square.h"
 #include "render/camera_rays.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "core/offset.h"
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "traverse/plane_packet.h"
 #include "traverse/plane_scalar.h"
 

@@ -8,7 +8,7 @@
 
 #include "core/offset.h"
 #include "io/load_scene.h"
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "render/camera_rays.h"
 #include "shade/optics_scalar.h"
 #include "traverse/box_scalar.h"

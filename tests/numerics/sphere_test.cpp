@@ -6,7 +6,7 @@
 #include <random>
 
 #include "core/offset.h"
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "traverse/sphere_packet.h"
 #include "traverse/sphere_scalar.h"
 

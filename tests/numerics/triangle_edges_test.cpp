@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "traverse/triangle_scalar.h"
 
 namespace raylane {

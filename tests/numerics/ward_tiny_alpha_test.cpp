@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "numerics/chi_square.h"
+#include "support/chi_square.h"
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"

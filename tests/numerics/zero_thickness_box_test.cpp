@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "numerics/geometry_support.h"
+#include "support/geometry_support.h"
 #include "traverse/box_packet.h"
 #include "traverse/box_scalar.h"
 #include "traverse/slab_packet.h"

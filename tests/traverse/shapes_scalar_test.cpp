@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "support/float_values.h"
 #include "traverse/box_scalar.h"
 #include "traverse/cylinder_scalar.h"
 #include "traverse/plane_scalar.h"
@@ -26,7 +27,7 @@ constexpr int rim_rays = 100000;
 constexpr int shape_oracle_rays = 100000;
 #endif
 
-const float nan = std::numeric_limits<float>::quiet_NaN();
+using test::nan_f;
 
 Ray make_ray(vec3 org, vec3 dir, float t_min = 0.0f, float t_max = infinity) {
     Ray r;
@@ -118,8 +119,8 @@ TEST(IntersectSphere, TangentRaysGiveADefinedResult) {
 TEST(IntersectSphere, NanAndZeroDirectionsNeverHit) {
     const Sphere s{vec3(0.0f), 1.0f};
     EXPECT_EQ(intersect_sphere(s, make_ray(vec3(0.0f, 0.0f, -5.0f), vec3(0.0f))), infinity);
-    EXPECT_EQ(intersect_sphere(s, make_ray(vec3(0.0f, 0.0f, -5.0f), vec3(0, nan, 1))), infinity);
-    EXPECT_EQ(intersect_sphere(s, make_ray(vec3(nan), vec3(0, 0, 1))), infinity);
+    EXPECT_EQ(intersect_sphere(s, make_ray(vec3(0.0f, 0.0f, -5.0f), vec3(0, nan_f, 1))), infinity);
+    EXPECT_EQ(intersect_sphere(s, make_ray(vec3(nan_f), vec3(0, 0, 1))), infinity);
 }
 
 TEST(IntersectSphere, UvFollowsAzimuthAndPolarAngle) {
@@ -279,7 +280,7 @@ TEST(IntersectBox, HandlesZeroAndNegativeZeroComponentsAndFacePlaneOrigins) {
         }
     }
     EXPECT_EQ(intersect_box(b, make_ray(vec3(0.0f, 0.0f, -5.0f), vec3(0.0f))), infinity);
-    EXPECT_EQ(intersect_box(b, make_ray(vec3(0.0f, 0.0f, -5.0f), vec3(0, nan, 1))), infinity);
+    EXPECT_EQ(intersect_box(b, make_ray(vec3(0.0f, 0.0f, -5.0f), vec3(0, nan_f, 1))), infinity);
 }
 
 TEST(IntersectBox, HitsAZeroThicknessBoxAtEveryAngle) {
@@ -383,7 +384,8 @@ TEST(IntersectCylinder, MissesAboveBesideAndBehind) {
     EXPECT_EQ(intersect_cylinder(c, make_ray(vec3(-5.0f, 1.0f, 0.0f), vec3(1, 0, 0), 0.0f, 4.0f)),
               infinity);
     EXPECT_EQ(intersect_cylinder(c, make_ray(vec3(-5.0f, 1.0f, 0.0f), vec3(0.0f))), infinity);
-    EXPECT_EQ(intersect_cylinder(c, make_ray(vec3(-5.0f, 1.0f, 0.0f), vec3(1, nan, 0))), infinity);
+    EXPECT_EQ(intersect_cylinder(c, make_ray(vec3(-5.0f, 1.0f, 0.0f), vec3(1, nan_f, 0))),
+              infinity);
 }
 
 TEST(IntersectCylinder, RaysInACapPlaneGiveADefinedResult) {
@@ -517,7 +519,7 @@ TEST(IntersectPlane, ParallelAndInPlaneRaysMissWithoutNan) {
         EXPECT_EQ(intersect_plane(p, make_ray(vec3(0.0f, -0.0f, 7.0f), vec3(0, z, 1))), infinity);
     }
     EXPECT_EQ(intersect_plane(p, make_ray(vec3(0.0f, 1.0f, 0.0f), vec3(0.0f))), infinity);
-    EXPECT_EQ(intersect_plane(p, make_ray(vec3(0.0f, 1.0f, 0.0f), vec3(0, nan, 0))), infinity);
+    EXPECT_EQ(intersect_plane(p, make_ray(vec3(0.0f, 1.0f, 0.0f), vec3(0, nan_f, 0))), infinity);
 }
 
 TEST(IntersectPlane, TinySlopesGiveAFiniteHitOrAMiss) {

@@ -1,4 +1,4 @@
-// tests/accel: SHA-256 (FIPS 180-4) of byte buffers, for the golden hashes of
+// tests/support: SHA-256 (FIPS 180-4) of byte buffers, for the golden hashes of
 // build_median_golden_test.cpp (a tree changed by one bit changes the digest).
 #pragma once
 

@@ -1,4 +1,4 @@
-// tests/accel: a straightforward std::nth_element median-split BVH written from the spec of
+// tests/support: a straightforward std::nth_element median-split BVH written from the spec of
 // build_bvh_median (src/accel/build_median.cpp must build the identical tree, bit for bit).
 #pragma once
 

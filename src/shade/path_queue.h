@@ -1,4 +1,4 @@
-// render: the packet renderer's ray queues - rays of a tile waiting to be traced, one array per
+// shade: the packet path's ray queues - rays of a tile waiting to be traced, one array per
 // field (SoA). Grow-only: after a few tiles a thread's queues stop allocating. Used by
 // render_packet.cpp and shade/shade_io_packet.h; the scalar path recurses instead.
 #pragma once

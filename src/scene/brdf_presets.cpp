@@ -1,6 +1,6 @@
-// shade: the Ngan et al. 2005 fits of brdf-reference.md table 3.1 (transcribed by
+// scene: the Ngan et al. 2005 fits of brdf-reference.md table 3.1 (transcribed by
 // bsdfbenchmark/bbm fits/ngan_*.fit and AndreasVanBarel/RayTracer src/material/*.java).
-#include "shade/brdf_presets.h"
+#include "scene/brdf_presets.h"
 
 #include <array>
 

@@ -1,6 +1,6 @@
-// Tests of shade/brdf_presets.h: the fit table against brdf-reference.md section 3.1 (read from
+// Tests of scene/brdf_presets.h: the fit table against brdf-reference.md section 3.1 (read from
 // the document itself), names and aliases, the MERL colour switch, and energy bounds.
-#include "shade/brdf_presets.h"
+#include "scene/brdf_presets.h"
 
 #include <gtest/gtest.h>
 

@@ -14,6 +14,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "support/float_values.h"
 #include "support/widths.h"
 #include "traverse/box_packet.h"
 #include "traverse/cylinder_packet.h"
@@ -29,7 +30,7 @@ constexpr int rays_per_shape = 10000;  // over all configurations of one shape k
 constexpr int rays_per_shape = 1000000;
 #endif
 
-const float nan = std::numeric_limits<float>::quiet_NaN();
+using test::nan_f;
 
 using Rng = std::mt19937;
 
@@ -67,7 +68,7 @@ struct ShapeCase {
 /// A special float: zero of either sign, denormal, huge, infinite or NaN.
 float special_float(Rng& rng) {
     const float values[] = {0.0f,  -0.0f,  1e-40f,   -1e-40f,   1e-30f,
-                            1e30f, -1e30f, infinity, -infinity, nan};
+                            1e30f, -1e30f, infinity, -infinity, nan_f};
     return values[pick(rng, 10)];
 }
 
@@ -214,9 +215,9 @@ size_t count_mismatches(const ShapeCase<Shape>& c, const CaseRays<Shape>& set, P
     size_t bad = 0;
     const size_t n = set.rays.size();
     Ray garbage;
-    garbage.org = vec3(nan, 1e30f, -0.0f);
-    garbage.dir = vec3(0.0f, nan, infinity);
-    garbage.t_min = nan;
+    garbage.org = vec3(nan_f, 1e30f, -0.0f);
+    garbage.dir = vec3(0.0f, nan_f, infinity);
+    garbage.t_min = nan_f;
     garbage.t_max = -1.0f;
     for (size_t first = 0; first < n; first += W) {
         uint32_t active_bits;

@@ -1,4 +1,4 @@
-// shade: the fitted BRDF parameters of Ngan, Durand and Matusik 2005 ("Experimental Analysis of
+// scene: the fitted BRDF parameters of Ngan, Durand and Matusik 2005 ("Experimental Analysis of
 // BRDF Models", EGSR) for the report's three materials (brdf-reference.md section 3.1).
 // Scalar and packet paths share these (data, not algorithms).
 #pragma once

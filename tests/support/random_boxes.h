@@ -1,4 +1,4 @@
-// tests/accel: random axis-aligned boxes for the BVH builders' tests.
+// tests/support: random axis-aligned boxes for the BVH builders' tests.
 #pragma once
 
 #include <random>
