@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "image/pfm.h"
 #include "io/model_path.h"
 #include "io/read_file.h"
 #include "render/camera_rays.h"
@@ -412,34 +413,6 @@ void save_reference(const std::string& pfm_path, const Reference& ref, const std
     std::filesystem::rename(tmp, meta, ec);
     if (ec) throw std::runtime_error(meta + ": cannot write: " + ec.message());
 }
-
-namespace {
-
-/// A PFM as write_pfm writes it ("PF", width, height, negative scale, little-endian floats,
-/// bottom row first); nullopt when anything differs.
-std::optional<Film> read_pfm(const std::string& path, int width, int height) {
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    const size_t data = static_cast<size_t>(width) * static_cast<size_t>(height) * sizeof(vec3);
-    if (ec || size < data || size > data + 64) return std::nullopt;
-    std::ifstream f(path, std::ios::binary);
-    std::string magic;
-    int w = 0, h = 0;
-    double scale = 0.0;
-    if (!(f >> magic >> w >> h >> scale) || magic != "PF" || w != width || h != height ||
-        !(scale < 0.0))
-        return std::nullopt;
-    if (f.get() != '\n') return std::nullopt;
-    Film film = make_film(width, height);
-    for (int y = height - 1; y >= 0; --y)
-        if (!f.read(reinterpret_cast<char*>(&film.at(0, y)),
-                    static_cast<std::streamsize>(sizeof(vec3)) * width))
-            return std::nullopt;
-    if (f.peek() != std::char_traits<char>::eof()) return std::nullopt;
-    return film;
-}
-
-}  // namespace
 
 std::optional<Reference> load_reference(const std::string& pfm_path, int width, int height,
                                         std::string* build) {

@@ -134,8 +134,8 @@ std::optional<AnalyticReference> analytic_reference(const Scene& scene, int supe
 std::string reference_cache_key(const std::string& scene_path, int width, int height,
                                 const ReferenceParams& params);
 
-/// Writes the reference as PFM plus a "<path>.txt" sidecar (spp, Var(ref), NaN samples,
-/// seconds, `build`). Throws std::runtime_error when the files cannot be written.
+/// Writes the reference as PFM (image/pfm.h) plus a "<path>.txt" sidecar (spp, Var(ref), NaN
+/// samples, seconds, `build`). Throws std::runtime_error when the files cannot be written.
 void save_reference(const std::string& pfm_path, const Reference& ref, const std::string& build);
 /// Reads what save_reference wrote; nullopt when either file is missing, malformed or not
 /// width x height (a cache miss, never an error). `build` receives the sidecar's build line.
