@@ -1,5 +1,5 @@
 // app: `raylane report SCENE... [--out-dir DIR] [--reference-spp N] [--spp-list 1,2,4,...]
-// [--paths packet,scalar] [--repeats K]`: error against run time (render/report.h).
+// [--paths packet,scalar] [--repeats K]`: error against run time (render/report_*.h).
 #include <tbb/info.h>
 
 #include <algorithm>
@@ -15,7 +15,10 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "image/plot_svg.h"
-#include "render/report.h"
+#include "render/report_analytic.h"
+#include "render/report_cache.h"
+#include "render/report_metrics.h"
+#include "render/report_sweep.h"
 #include "render/tiles.h"
 #include "simd/simd.h"
 
