@@ -1,5 +1,5 @@
 // app: `raylane report SCENE... [--out-dir DIR] [--reference-spp N] [--spp-list 1,2,4,...]
-// [--paths packet,scalar] [--repeats K]`: error against run time (render/report.h).
+// [--paths packet,scalar] [--repeats K]`: error against run time (render/report_*.h).
 #include <tbb/info.h>
 
 #include <algorithm>
@@ -15,7 +15,10 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "image/plot_svg.h"
-#include "render/report.h"
+#include "render/report_analytic.h"
+#include "render/report_cache.h"
+#include "render/report_metrics.h"
+#include "render/report_sweep.h"
 #include "render/tiles.h"
 #include "simd/simd.h"
 
@@ -127,85 +130,98 @@ struct LoadedScene {
     double load_ms = 0.0;
 };
 
-/// Renders one scene's report; returns false when a check failed (NaN/Inf, ray counts).
-bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter& rep) {
-    const Scene& scene = ls.scene;
-    const int w = scene.camera.width, h = scene.camera.height;
-    const double t_build = now_seconds();
-    const Accel accel = build_accel(scene, BuildParams{});
-    const double build_ms = elapsed_ms(t_build);
-    const int workers = worker_threads(o.threads);  // 0: all
-    const int threads = workers > 0 ? workers : tbb::info::default_concurrency();
-    bool ok = true;
-
+/// The first lines of a scene's report: the scene, the build and the setup times.
+void print_scene_header(const LoadedScene& ls, int threads, double build_ms) {
+    const int w = ls.scene.camera.width, h = ls.scene.camera.height;
     std::printf("report  scene=%s  %dx%d  threads=%d  W=%d\n", ls.path.c_str(), w, h, threads,
                 native_width);
     std::printf("build   %s; %s\n", build_description().c_str(), cpu_model().c_str());
     std::printf("setup   load %.1f ms, BVH build %.1f ms (not in the times below)\n", ls.load_ms,
                 build_ms);
+}
 
-    // reference
+/// The scene's analytic reference (error-vs-time.md 2.1), if it has one.
+std::optional<Reference> analytic_scene_reference(const LoadedScene& ls, const Reporter& rep) {
+    const double t_analytic = now_seconds();
+    std::optional<AnalyticReference> a = analytic_reference(ls.scene);
+    if (!a) return std::nullopt;
+    Reference ref;
+    ref.seconds = now_seconds() - t_analytic;
+    rep.phase(ls.stem + ": analytic reference (" + a->name + ")");
+    ref.film = std::move(a->film);
+    ref.kind = "analytic: " + a->name;
+    std::printf("ref     analytic (%s; error-vs-time.md 2.1), no noise, %.1f s\n", a->name.c_str(),
+                ref.seconds);
+    return ref;
+}
+
+/// The converged reference: the cached one when its key matches (and --fresh-reference is off),
+/// else rendered and saved to the cache.
+Reference converged_scene_reference(const LoadedScene& ls, const Accel& accel,
+                                    const ReportOptions& o, const ReferenceParams& rp,
+                                    const Reporter& rep) {
+    const int w = ls.scene.camera.width, h = ls.scene.camera.height;
+    const std::string key = reference_cache_key(ls.path, w, h, rp);
+    const std::string file =
+        (std::filesystem::path(o.out_dir) / ("reference_" + ls.stem + "_" + key + ".pfm")).string();
+    std::string cached_build;
+    std::optional<Reference> cached;
+    if (!o.fresh_reference) cached = load_reference(file, w, h, &cached_build);
+    if (cached) {
+        std::printf("ref     converged, %d spp, %s path, seeds 0x%08x+, reused from %s\n",
+                    cached->spp, path_name(rp.path), rp.seed, file.c_str());
+        if (cached_build != build_stamp())
+            std::printf(
+                "note    the cached reference was made by another build (%s); "
+                "--fresh-reference renders it again\n",
+                cached_build.c_str());
+        return std::move(*cached);
+    }
+    const int chunk = std::clamp(rp.chunk_spp, 2, rp.spp / 2);
+    rep.phase(ls.stem + ": rendering the reference, " + std::to_string(rp.spp) + " spp in " +
+              std::to_string((rp.spp + chunk - 1) / chunk) + " chunks");
+    const double start = now_seconds();
+    Reference ref = render_converged_reference(ls.scene, accel, rp, [&](int done, int total) {
+        rep.update(ls.stem + ": reference " + std::to_string(done) + "/" + std::to_string(total) +
+                   " chunks" + seconds_left(start, done, total));
+    });
+    rep.done();
+    std::filesystem::create_directories(o.out_dir);
+    save_reference(file, ref, build_stamp());
+    std::printf(
+        "ref     converged, %d spp, %s path, seeds 0x%08x+, rendered in %.1f s, "
+        "saved to %s\n",
+        ref.spp, path_name(rp.path), rp.seed, ref.seconds, file.c_str());
+    return ref;
+}
+
+/// The reference of the scene's sweep: analytic when the scene has one, else converged. `ok`
+/// becomes false when a converged reference has NaN or Inf samples.
+Reference scene_reference(const LoadedScene& ls, const Accel& accel, const ReportOptions& o,
+                          int workers, const Reporter& rep, bool& ok) {
     ReferenceParams rp;
     rp.spp = o.reference_spp;
     rp.threads = workers;
     rp.path = o.reference_path == "scalar" ? RenderPath::scalar : RenderPath::packet;
-    Reference ref;
-    const double t_analytic = now_seconds();
-    if (std::optional<AnalyticReference> a = analytic_reference(scene)) {
-        ref.seconds = now_seconds() - t_analytic;
-        rep.phase(ls.stem + ": analytic reference (" + a->name + ")");
-        ref.film = std::move(a->film);
-        ref.kind = "analytic: " + a->name;
-        std::printf("ref     analytic (%s; error-vs-time.md 2.1), no noise, %.1f s\n",
-                    a->name.c_str(), ref.seconds);
-    } else {
-        const std::string key = reference_cache_key(ls.path, w, h, rp);
-        const std::string file =
-            (std::filesystem::path(o.out_dir) / ("reference_" + ls.stem + "_" + key + ".pfm"))
-                .string();
-        std::string cached_build;
-        std::optional<Reference> cached;
-        if (!o.fresh_reference) cached = load_reference(file, w, h, &cached_build);
-        if (cached) {
-            ref = std::move(*cached);
-            std::printf("ref     converged, %d spp, %s path, seeds 0x%08x+, reused from %s\n",
-                        ref.spp, path_name(rp.path), rp.seed, file.c_str());
-            if (cached_build != build_stamp())
-                std::printf(
-                    "note    the cached reference was made by another build (%s); "
-                    "--fresh-reference renders it again\n",
-                    cached_build.c_str());
-        } else {
-            const int chunk = std::clamp(rp.chunk_spp, 2, rp.spp / 2);
-            rep.phase(ls.stem + ": rendering the reference, " + std::to_string(rp.spp) +
-                      " spp in " + std::to_string((rp.spp + chunk - 1) / chunk) + " chunks");
-            const double start = now_seconds();
-            ref = render_converged_reference(scene, accel, rp, [&](int done, int total) {
-                rep.update(ls.stem + ": reference " + std::to_string(done) + "/" +
-                           std::to_string(total) + " chunks" + seconds_left(start, done, total));
-            });
-            rep.done();
-            std::filesystem::create_directories(o.out_dir);
-            save_reference(file, ref, build_stamp());
-            std::printf(
-                "ref     converged, %d spp, %s path, seeds 0x%08x+, rendered in %.1f s, "
-                "saved to %s\n",
-                ref.spp, path_name(rp.path), rp.seed, ref.seconds, file.c_str());
-        }
-        const double largest = *std::max_element(o.spp_list.begin(), o.spp_list.end());
-        std::printf("        Var(ref) = %.3g per value (halves A/B: MSE(A,B)/4)%s\n", ref.variance,
-                    ref.spp < 100 * largest
-                        ? "; below 100 x the largest sweep value, so it inflates the smallest "
-                          "errors"
-                        : "");
-        if (ref.nan_samples > 0) {
-            std::printf("error   the reference has %llu NaN/Inf samples\n",
-                        static_cast<unsigned long long>(ref.nan_samples));
-            ok = false;
-        }
+    if (std::optional<Reference> analytic = analytic_scene_reference(ls, rep))
+        return std::move(*analytic);
+    Reference ref = converged_scene_reference(ls, accel, o, rp, rep);
+    const double largest = *std::max_element(o.spp_list.begin(), o.spp_list.end());
+    std::printf("        Var(ref) = %.3g per value (halves A/B: MSE(A,B)/4)%s\n", ref.variance,
+                ref.spp < 100 * largest
+                    ? "; below 100 x the largest sweep value, so it inflates the smallest "
+                      "errors"
+                    : "");
+    if (ref.nan_samples > 0) {
+        std::printf("error   the reference has %llu NaN/Inf samples\n",
+                    static_cast<unsigned long long>(ref.nan_samples));
+        ok = false;
     }
+    return ref;
+}
 
-    // sweep
+/// The sweep the options ask for: their paths and sample counts, the scene's knobs.
+SweepParams scene_sweep_params(const ReportOptions& o, const Scene& scene, int workers) {
     SweepParams sp;
     sp.paths.clear();
     for (const std::string& p : o.paths)
@@ -214,51 +230,76 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
     sp.samples = o.spp_list;
     sp.repeats = o.repeats;
     sp.threads = workers;
+    return sp;
+}
+
+/// run_sweep with progress on stderr.
+std::vector<SweepPoint> run_scene_sweep(const LoadedScene& ls, const Accel& accel,
+                                        const Film& reference, const SweepParams& sp,
+                                        const Reporter& rep) {
     rep.phase(
         ls.stem + ": sweep, " +
         std::to_string(sp.paths.size() * sp.knobs.size() * sp.samples.size() * size_t(sp.repeats)) +
         " renders");
     const double sweep_start = now_seconds();
     const std::vector<SweepPoint> points =
-        run_sweep(scene, accel, ref.film, sp, [&](int done, int total, const SweepPoint& pt) {
+        run_sweep(ls.scene, accel, reference, sp, [&](int done, int total, const SweepPoint& pt) {
             rep.update(ls.stem + ": sweep " + std::to_string(done + 1) + "/" +
                        std::to_string(total) + " (" + path_name(pt.path) + ", " +
                        knob_name(pt.knob) + " " + std::to_string(pt.samples) + ")" +
                        seconds_left(sweep_start, done, total));
         });
     rep.done();
+    return points;
+}
 
-    // speed-up of packet over scalar at equal RMSE, per knob
-    const bool both = std::count(sp.paths.begin(), sp.paths.end(), RenderPath::packet) &&
-                      std::count(sp.paths.begin(), sp.paths.end(), RenderPath::scalar);
-    std::map<std::pair<SweepKnob, int>, std::optional<double>> speedup;
+/// Packet over scalar, when the sweep has both paths: the speed-up at equal RMSE of each packet
+/// point, and the ratios whose spread the summary lines give.
+struct Speedups {
+    bool both = false;  ///< both paths were swept (else everything below is empty)
+    std::map<std::pair<SweepKnob, int>, std::optional<double>> at_equal_rmse;  ///< (knob, samples)
     std::vector<double> speedups, time_ratios, efficiency_ratios;
-    if (both) {
-        for (SweepKnob k : sp.knobs) {
-            const Curve s = curve_of(points, RenderPath::scalar, k);
-            const Curve p = curve_of(points, RenderPath::packet, k);
-            const auto su = speedup_at_equal_error(s, p);
-            for (size_t i = 0; i < p.samples.size(); ++i) {
-                speedup[{k, int(p.samples[i])}] = su[i];
-                if (su[i]) speedups.push_back(*su[i]);
-                if (p.seconds[i] > 0) time_ratios.push_back(s.seconds[i] / p.seconds[i]);
-            }
-            // efficiency 1 / (relMSE t) at equal samples, packet over scalar
-            const auto sp_s = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) {
-                return q.path == RenderPath::scalar && q.knob == k;
-            });
-            const auto sp_p = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) {
-                return q.path == RenderPath::packet && q.knob == k;
-            });
-            for (size_t i = 0; i < p.samples.size(); ++i) {
-                const SweepPoint& a = *(sp_s + std::ptrdiff_t(i));
-                const SweepPoint& b = *(sp_p + std::ptrdiff_t(i));
-                const double den = b.error.relmse * b.seconds_median;
-                if (den > 0.0) efficiency_ratios.push_back(a.error.relmse * a.seconds_median / den);
-            }
+    std::optional<double> of(const SweepPoint& pt) const {
+        const auto it = at_equal_rmse.find({pt.knob, pt.samples});
+        return it == at_equal_rmse.end() ? std::nullopt : it->second;
+    }
+};
+
+Speedups speedups_of(const std::vector<SweepPoint>& points, const SweepParams& sp) {
+    Speedups out;
+    out.both = std::count(sp.paths.begin(), sp.paths.end(), RenderPath::packet) &&
+               std::count(sp.paths.begin(), sp.paths.end(), RenderPath::scalar);
+    if (!out.both) return out;
+    for (SweepKnob k : sp.knobs) {
+        const Curve s = curve_of(points, RenderPath::scalar, k);
+        const Curve p = curve_of(points, RenderPath::packet, k);
+        const auto su = speedup_at_equal_error(s, p);
+        for (size_t i = 0; i < p.samples.size(); ++i) {
+            out.at_equal_rmse[{k, int(p.samples[i])}] = su[i];
+            if (su[i]) out.speedups.push_back(*su[i]);
+            if (p.seconds[i] > 0) out.time_ratios.push_back(s.seconds[i] / p.seconds[i]);
+        }
+        // efficiency 1 / (relMSE t) at equal samples, packet over scalar
+        const auto sp_s = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) {
+            return q.path == RenderPath::scalar && q.knob == k;
+        });
+        const auto sp_p = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) {
+            return q.path == RenderPath::packet && q.knob == k;
+        });
+        for (size_t i = 0; i < p.samples.size(); ++i) {
+            const SweepPoint& a = *(sp_s + std::ptrdiff_t(i));
+            const SweepPoint& b = *(sp_p + std::ptrdiff_t(i));
+            const double den = b.error.relmse * b.seconds_median;
+            if (den > 0.0) out.efficiency_ratios.push_back(a.error.relmse * a.seconds_median / den);
         }
     }
+    return out;
+}
 
+/// The table of the sweep's points; false when a check failed (NaN/Inf, ray counts).
+bool print_sweep_table(const std::vector<SweepPoint>& points, const SweepParams& sp,
+                       const Speedups& speedups) {
+    bool ok = true;
     std::printf(
         "metrics RMSE; relMSE eps=%.0e; SMAPE in [0,1] eps=%.0e; time = render only, "
         "median of %d interleaved runs; errors = mean over seeds 1..%d (+-se)\n",
@@ -268,7 +309,7 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
     for (const SweepPoint& pt : points) {
         const uint64_t bad = pt.error.nan_values + pt.error.inf_values + pt.nan_samples();
         std::string su;
-        if (both && pt.path == RenderPath::packet) su = opt_ratio(speedup[{pt.knob, pt.samples}]);
+        if (speedups.both && pt.path == RenderPath::packet) su = opt_ratio(speedups.of(pt));
         std::printf("%-7s %-6s %7d %9.4f %8.2f %10.3e %9.1e %10.3e %8.5f %4llu %9s\n",
                     path_name(pt.path), knob_name(pt.knob), pt.samples, pt.seconds_median,
                     pt.mrays_per_second(), pt.error.rmse, pt.rmse_se, pt.error.relmse,
@@ -280,7 +321,11 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
             ok = false;
         }
     }
+    return ok;
+}
 
+/// The slope of each curve against time and against samples.
+void print_fits(const std::vector<SweepPoint>& points, const SweepParams& sp) {
     std::printf("\nfit log10(RMSE) = a + b log10(x), least squares over the points above:\n");
     for (SweepKnob k : sp.knobs) {
         for (RenderPath p : sp.paths) {
@@ -296,40 +341,48 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
     std::printf(
         "  (expected b = -0.5 for independent samples, steeper with stratification "
         "(-0.75 over edges); 1 spp is the pixel centre, not a random sample)\n");
-    if (both) {
-        const Spread st = spread_of(time_ratios), ss = spread_of(speedups);
-        const Spread se = spread_of(efficiency_ratios);
-        std::printf(
-            "equal samples  time scalar/packet: median %.2fx (range %.2f-%.2f, %zu "
-            "points)\n",
-            st.median, st.lo, st.hi, st.n);
-        if (ss.n > 0)
-            std::printf(
-                "equal RMSE     speed-up packet over scalar (log-log interpolation): "
-                "median %.2fx (range %.2f-%.2f, %zu points)\n",
-                ss.median, ss.lo, ss.hi, ss.n);
-        else
-            std::printf("equal RMSE     no packet point within the scalar curve's RMSE range\n");
-        // time to an error X from the fitted lines (X = the packet curve's middle RMSE)
-        const Curve cs = curve_of(points, RenderPath::scalar, SweepKnob::spp);
-        const Curve cp = curve_of(points, RenderPath::packet, SweepKnob::spp);
-        if (!cp.rmse.empty()) {
-            const double x = cp.rmse[cp.rmse.size() / 2];
-            const auto ts = x_at_fit(fit_loglog(cs.seconds, cs.rmse), x);
-            const auto tp = x_at_fit(fit_loglog(cp.seconds, cp.rmse), x);
-            if (ts && tp)
-                std::printf(
-                    "time to RMSE %.3g from the fits: scalar %.4f s, packet %.4f s -> "
-                    "%.2fx\n",
-                    x, *ts, *tp, *ts / *tp);
-        }
-        std::printf(
-            "efficiency     1/(relMSE t), packet over scalar at equal samples: median "
-            "%.2fx (range %.2f-%.2f)\n",
-            se.median, se.lo, se.hi);
-    }
+}
 
-    // CSV
+/// Packet over scalar in a few lines: at equal samples, at equal RMSE, from the fits, and the
+/// efficiency. Only when both paths were swept.
+void print_speedup_summary(const std::vector<SweepPoint>& points, const Speedups& speedups) {
+    const Spread st = spread_of(speedups.time_ratios), ss = spread_of(speedups.speedups);
+    const Spread se = spread_of(speedups.efficiency_ratios);
+    std::printf(
+        "equal samples  time scalar/packet: median %.2fx (range %.2f-%.2f, %zu "
+        "points)\n",
+        st.median, st.lo, st.hi, st.n);
+    if (ss.n > 0)
+        std::printf(
+            "equal RMSE     speed-up packet over scalar (log-log interpolation): "
+            "median %.2fx (range %.2f-%.2f, %zu points)\n",
+            ss.median, ss.lo, ss.hi, ss.n);
+    else
+        std::printf("equal RMSE     no packet point within the scalar curve's RMSE range\n");
+    // time to an error X from the fitted lines (X = the packet curve's middle RMSE)
+    const Curve cs = curve_of(points, RenderPath::scalar, SweepKnob::spp);
+    const Curve cp = curve_of(points, RenderPath::packet, SweepKnob::spp);
+    if (!cp.rmse.empty()) {
+        const double x = cp.rmse[cp.rmse.size() / 2];
+        const auto ts = x_at_fit(fit_loglog(cs.seconds, cs.rmse), x);
+        const auto tp = x_at_fit(fit_loglog(cp.seconds, cp.rmse), x);
+        if (ts && tp)
+            std::printf(
+                "time to RMSE %.3g from the fits: scalar %.4f s, packet %.4f s -> "
+                "%.2fx\n",
+                x, *ts, *tp, *ts / *tp);
+    }
+    std::printf(
+        "efficiency     1/(relMSE t), packet over scalar at equal samples: median "
+        "%.2fx (range %.2f-%.2f)\n",
+        se.median, se.lo, se.hi);
+}
+
+/// Writes OUT_DIR/STEM.csv, a row per point; returns its path.
+std::string write_sweep_csv(const LoadedScene& ls, const ReportOptions& o, int threads,
+                            const SweepParams& sp, const Reference& ref,
+                            const std::vector<SweepPoint>& points, const Speedups& speedups) {
+    const int w = ls.scene.camera.width, h = ls.scene.camera.height;
     std::filesystem::create_directories(o.out_dir);
     const std::string csv_path = (std::filesystem::path(o.out_dir) / (ls.stem + ".csv")).string();
     std::string csv =
@@ -347,8 +400,8 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
             lo = std::min(lo, r.seconds), hi = std::max(hi, r.seconds);
         const RenderStats first = pt.runs.empty() ? RenderStats{} : pt.runs.front();
         std::string su;
-        if (both && pt.path == RenderPath::packet)
-            if (const auto v = speedup[{pt.knob, pt.samples}]) su = std::to_string(*v);
+        if (speedups.both && pt.path == RenderPath::packet)
+            if (const auto v = speedups.of(pt)) su = std::to_string(*v);
         char line[1024];
         std::snprintf(
             line, sizeof line,
@@ -372,8 +425,14 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
         csv += line;
     }
     write_text_file(csv_path, csv);
+    return csv_path;
+}
 
-    // plot
+/// Writes OUT_DIR/STEM.svg, RMSE against time, a series per (knob, path); returns its path.
+std::string write_sweep_plot(const LoadedScene& ls, const ReportOptions& o, int threads,
+                             const SweepParams& sp, const Reference& ref,
+                             const std::vector<SweepPoint>& points) {
+    const int w = ls.scene.camera.width, h = ls.scene.camera.height;
     LogLogPlot plot;
     plot.title = ls.stem + ": RMSE against render time (" + std::to_string(w) + "x" +
                  std::to_string(h) + ", " + std::to_string(threads) + " threads)";
@@ -404,6 +463,28 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
     }
     const std::string svg_path = (std::filesystem::path(o.out_dir) / (ls.stem + ".svg")).string();
     write_text_file(svg_path, loglog_svg(plot));
+    return svg_path;
+}
+
+/// Renders one scene's report: the reference, the sweep, the table and fits, the CSV and the
+/// plot. Returns false when a check failed (NaN/Inf, ray counts).
+bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter& rep) {
+    const double t_build = now_seconds();
+    const Accel accel = build_accel(ls.scene, BuildParams{});
+    const double build_ms = elapsed_ms(t_build);
+    const int workers = worker_threads(o.threads);  // 0: all
+    const int threads = workers > 0 ? workers : tbb::info::default_concurrency();
+    bool ok = true;
+    print_scene_header(ls, threads, build_ms);
+    const Reference ref = scene_reference(ls, accel, o, workers, rep, ok);
+    const SweepParams sp = scene_sweep_params(o, ls.scene, workers);
+    const std::vector<SweepPoint> points = run_scene_sweep(ls, accel, ref.film, sp, rep);
+    const Speedups speedups = speedups_of(points, sp);
+    ok = print_sweep_table(points, sp, speedups) && ok;
+    print_fits(points, sp);
+    if (speedups.both) print_speedup_summary(points, speedups);
+    const std::string csv_path = write_sweep_csv(ls, o, threads, sp, ref, points, speedups);
+    const std::string svg_path = write_sweep_plot(ls, o, threads, sp, ref, points);
     std::printf("csv     %s\nplot    %s\n\n", csv_path.c_str(), svg_path.c_str());
     std::fflush(stdout);
     return ok;

@@ -1,4 +1,4 @@
-// image: film encodings and writers.
+// image: film encodings, the PNG writer, and write_image (PNG or PFM, pfm.h).
 #include "image/film.h"
 
 #include <tbb/blocked_range.h>
@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +14,8 @@
 #include <stdexcept>
 
 #include "image/deflate.h"
+#include "image/pfm.h"
+#include "image/write_file.h"
 
 // stb_image_write writes the PNG's chunks; the zlib stream of its pixels is zlib_compress's
 // (deflate.h), which stb_image_write frees with free(). No exception crosses stb: a failure
@@ -117,41 +118,6 @@ ImageBytes encode_film(const Film& film, Encoding encoding) {
     return bytes;
 }
 
-namespace {
-
-/// Renames `tmp` over `path`, or removes it and throws.
-void commit_file(const std::string& tmp, const std::string& path) {
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error(path + ": cannot write: " + ec.message());
-    }
-}
-
-std::string temp_name(const std::string& path) { return path + ".partial"; }
-
-/// Writes a file through write(FILE*) -> bool into a temporary, then renames it over `path`:
-/// an interrupted write never leaves a half file there. Throws std::runtime_error.
-template <class Write>
-void write_file(const std::string& path, Write&& write) {
-    const std::string tmp = temp_name(path);
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw std::runtime_error(path + ": cannot open for writing: " + std::strerror(errno));
-    errno = 0;
-    bool ok = write(f);
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok) {
-        const int error = errno;
-        std::remove(tmp.c_str());
-        throw std::runtime_error(path + ": write failed" +
-                                 (error ? std::string(": ") + std::strerror(error) : ""));
-    }
-    commit_file(tmp, path);
-}
-
-}  // namespace
-
 std::vector<uint8_t> encode_png(const Film& film, Encoding encoding) {
     const ImageBytes bytes = encode_film(film, encoding);
     int size = 0;
@@ -171,18 +137,8 @@ void write_png(const std::string& path, const Film& film, Encoding encoding) {
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": " + e.what());
     }
-    write_file(path, [&](std::FILE* f) {
+    image_detail::write_file(path, [&](std::FILE* f) {
         return std::fwrite(png.data(), 1, png.size(), f) == png.size();
-    });
-}
-
-void write_pfm(const std::string& path, const Film& film) {
-    write_file(path, [&](std::FILE* f) {
-        bool ok = std::fprintf(f, "PF\n%d %d\n-1.0\n", film.width, film.height) > 0;
-        const auto w = static_cast<size_t>(film.width);
-        for (int y = film.height - 1; y >= 0 && ok && w > 0; --y)
-            ok = std::fwrite(&film.at(0, y), sizeof(vec3), w, f) == w;
-        return ok;
     });
 }
 

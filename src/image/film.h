@@ -1,4 +1,4 @@
-// image: the film (linear float RGB), its encodings, and the PNG / PFM writers.
+// image: the film (linear float RGB), its encodings, and the PNG writer; PFM in image/pfm.h.
 #pragma once
 
 #include <algorithm>
@@ -76,15 +76,13 @@ void write_png(const std::string& path, const Film& film, Encoding encoding);
 /// zlib stream of image/deflate.h.
 std::vector<uint8_t> encode_png(const Film& film, Encoding encoding);
 
-/// Writes a little-endian linear float PFM (bottom row first, as the format says).
-void write_pfm(const std::string& path, const Film& film);
-
 /// The image formats write_image writes, named by the path's extension in any case (.png, .pfm);
 /// none for any other.
 enum class ImageFormat : uint8_t { none, png, pfm };
 ImageFormat image_format(const std::string& path);
 
-/// Writes PNG or PFM by the file extension (image_format); throws for any other.
+/// Writes PNG (write_png) or PFM (pfm.h, write_pfm) by the file extension (image_format); throws
+/// for any other.
 void write_image(const std::string& path, const Film& film, Encoding encoding);
 
 /// The report's tone mapping (report-scenes.md 1.3): a pixel whose largest channel exceeds 1

@@ -2,7 +2,7 @@
 // scalar path's recursion: closest hits in arrays, queue entries gathered into registers
 // (ShadeInput), and the two targets a batch writes to: the wavefront's queues and slots
 // (ShadeTarget), or a camera packet's registers and its shadow rays in place (PacketTarget).
-// Also the kernels' lane-wise helpers: random numbers keyed by pixel, sample and path.
+// Also the kernels' lane-wise helpers: gathers, accumulation, child path keys.
 #pragma once
 
 #include <cstdint>
@@ -129,15 +129,6 @@ inline void add_shadow_rays(const PacketTarget<W>& out, size_t j, int i, const V
     b.rays[p].t_max = select(lit, r.t_max, b.rays[p].t_max);
     b.contribution[p] = select(lit, contribution, b.contribution[p]);
     b.lanes[p] = mask_or(b.lanes[p], lit);
-}
-
-template <int W>
-inline vfloat<W> random_at(const vint<W>& pixel, const vint<W>& sample, uint32_t seed,
-                           const vint<W>& key, uint32_t purpose, uint32_t index, uint32_t coord) {
-    // path_dim of core/rng.h, lane-wise
-    const vint<W> salt = hash_u32<W>(broadcast<W>((purpose << 28) ^ (index << 2) ^ coord));
-    const vint<W> dim = hash_u32<W>(key ^ salt) | broadcast<W>(0x80000000u);
-    return random_float<W>(pixel, sample, dim, broadcast<W>(seed));
 }
 
 template <int W>

@@ -1,4 +1,4 @@
-// shade: the recursive reference shading of one path. Mirrored by shade_packet.cpp, which
+// shade: the recursive reference shading of one path. Mirrored by shade_packet.h, which
 // computes the same terms for batches of hits grouped by material.
 #include "shade/shade_scalar.h"
 

@@ -1,5 +1,5 @@
 // Tests of `raylane report` (app/report_command.cpp) through the binary: one-line errors, the
-// cached reference, the analytic reference. render/report.cpp itself: tests/render/report_test.cpp.
+// cached reference, the analytic reference. render/report_*.cpp: tests/render/report_*_test.cpp.
 #include <gtest/gtest.h>
 
 #include <filesystem>

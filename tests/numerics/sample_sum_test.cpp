@@ -9,7 +9,7 @@
 #include <random>
 
 #include "image/film.h"
-#include "render/report.h"
+#include "render/report_metrics.h"
 #include "render/sample_sum_packet.h"
 #include "render/sample_sum_scalar.h"
 #include "simd/lanes.h"
