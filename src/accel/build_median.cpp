@@ -1059,6 +1059,8 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
         }
     });
     accel.phases.boxes = clock.lap();
+    accel.wide = collapse_to_wide(accel.bvh);
+    accel.phases.collapse = clock.lap();
     return accel;
 }
 

@@ -173,6 +173,7 @@ MeshAccel build_mesh_accel_sah(const Mesh& mesh, const BuildParams& params) {
         const uvec3 t = mesh.tris[id];
         accel.verts.push_back({mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]});
     }
+    accel.wide = collapse_to_wide(accel.bvh);
     return accel;
 }
 

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "accel/wide_bvh.h"
 #include "core/aabb.h"
 #include "core/pages.h"
 #include "scene/scene.h"
@@ -92,6 +93,7 @@ struct BuildPhases {
     double splits = 0.0;     ///< the median splits, level by level (O(n log n)), temporaries freed
     double vertices = 0.0;   ///< the vertices gathered in leaf order (O(n))
     double boxes = 0.0;      ///< the node bounds, bottom up (O(n))
+    double collapse = 0.0;   ///< the wide tree collapsed from the binary one (O(n))
 };
 
 /// Adds b's phases to a's (a total over several builds).
@@ -101,11 +103,13 @@ inline BuildPhases& operator+=(BuildPhases& a, const BuildPhases& b) {
     a.splits += b.splits;
     a.vertices += b.vertices;
     a.boxes += b.boxes;
+    a.collapse += b.collapse;
     return a;
 }
 
 struct MeshAccel {
-    Bvh bvh;
+    Bvh bvh;       ///< the binary tree: the scalar path's
+    WideBvh wide;  ///< collapsed from bvh, same leaves: the packet path's
     std::vector<TriangleVerts, OverwriteAllocator<TriangleVerts>>
         verts;           ///< verts[k] is triangle bvh.prim_ids[k] of the mesh
     BuildPhases phases;  ///< how long the build's phases took

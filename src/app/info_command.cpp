@@ -17,6 +17,20 @@ void print_bvh(const char* label, const BvhStats& s, size_t triangles, size_t ex
                     double(bytes) / double(triangles), double(bytes) / (1024.0 * 1024.0));
 }
 
+/// The packet path's wide tree of a mesh; `shared_bytes` are the ids and vertices both trees
+/// read.
+void print_wide(const WideStats& s, size_t triangles, size_t shared_bytes) {
+    std::printf(
+        "%-10s wide tree (packet path): %zu nodes, %.2f children per node, %zu leaves, "
+        "%.2f triangles per leaf\n",
+        "", s.nodes, s.mean_children, s.leaves,
+        s.leaves ? double(s.prims) / double(s.leaves) : 0.0);
+    const size_t bytes = s.bytes + shared_bytes;
+    if (triangles > 0)
+        std::printf("%-10s %.1f bytes per triangle (wide nodes, ids, vertices), %.2f MiB\n", "",
+                    double(bytes) / double(triangles), double(bytes) / (1024.0 * 1024.0));
+}
+
 int run_info(const std::string& path, const std::string& bvh) {
     const double t_load = now_seconds();
     const Scene scene = load_scene_or_builtin(path);
@@ -49,8 +63,11 @@ int run_info(const std::string& path, const std::string& bvh) {
         std::printf("\n");
         const size_t vert_bytes = m.verts.size() * sizeof(TriangleVerts);
         const BvhStats s = compute_stats(m.bvh);
+        std::printf("%-10s binary tree (scalar path):\n", "");
         print_bvh("", s, m.verts.size(), vert_bytes);
-        total += s.bytes + vert_bytes;
+        const WideStats w = compute_wide_stats(m.wide);
+        print_wide(w, m.verts.size(), vert_bytes + m.bvh.prim_ids.size() * sizeof(uint32_t));
+        total += s.bytes + vert_bytes + w.bytes;
     }
     const BvhStats top = compute_stats(accel.top);
     print_bvh("top level", top, 0, 0);
@@ -64,8 +81,8 @@ int run_info(const std::string& path, const std::string& bvh) {
         for (const MeshAccel& m : accel.meshes) sum += m.phases;
         std::printf(
             "%-10s mesh builds: centroids %.1f, sorts %.1f, splits %.1f, vertices %.1f, boxes "
-            "%.1f ms\n",
-            "", sum.centroids, sum.sorts, sum.splits, sum.vertices, sum.boxes);
+            "%.1f ms; wide trees collapsed in %.1f ms\n",
+            "", sum.centroids, sum.sorts, sum.splits, sum.vertices, sum.boxes, sum.collapse);
     }
     return 0;
 }

@@ -11,6 +11,7 @@
 #include "traverse/cylinder_packet.h"
 #include "traverse/hit_update_packet.h"
 #include "traverse/intersect_scalar.h"
+#include "traverse/intersect_wide_packet.h"
 #include "traverse/plane_packet.h"
 #include "traverse/slab_packet.h"
 #include "traverse/sphere_packet.h"
@@ -289,8 +290,13 @@ void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t o
                               vint<W>* nodes_visited, uint32_t start = 0) {
     const Object& object = scene.objects[object_index];
     if (object.kind == ShapeKind::mesh) {
-        intersect_mesh_closest(accel.meshes[object.shape], object_index, rays, active, hit,
-                               nodes_visited, start);
+        // from the root: the wide tree; from a node of the binary tree (blocks, streams): that
+        if (start == 0)
+            intersect_mesh_closest_wide(accel.meshes[object.shape], object_index, rays, active, hit,
+                                        nodes_visited);
+        else
+            intersect_mesh_closest(accel.meshes[object.shape], object_index, rays, active, hit,
+                                   nodes_visited, start);
         return;
     }
     RayPacket<W> r = to_object_space(object, rays);
@@ -307,7 +313,8 @@ vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t o
     const Object& object = scene.objects[object_index];
     if (!object.casts_shadows) return vmask<W>(false);
     if (object.kind == ShapeKind::mesh)
-        return intersect_mesh_any(accel.meshes[object.shape], rays, active, start);
+        return start == 0 ? intersect_mesh_any_wide(accel.meshes[object.shape], rays, active)
+                          : intersect_mesh_any(accel.meshes[object.shape], rays, active, start);
     const vfloat<W> t = intersect_analytic(scene, object, to_object_space(object, rays), active);
     return mask_and(active, t < rays.t_max);
 }

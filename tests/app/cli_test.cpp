@@ -113,7 +113,8 @@ TEST(Cli, InfoPrintsTheMeshBuildsPhasesForTheMedianSplitOnly) {
     const size_t line = median.out.find("mesh builds: centroids ");
     ASSERT_NE(line, std::string::npos) << median.out;
     const std::string phases = median.out.substr(line, median.out.find('\n', line) - line);
-    for (const char* key : {", sorts ", ", splits ", ", vertices ", ", boxes "})
+    for (const char* key :
+         {", sorts ", ", splits ", ", vertices ", ", boxes ", "; wide trees collapsed in "})
         EXPECT_NE(phases.find(key), std::string::npos) << key << "\n" << phases;
     const CliRun sah = run("info --bvh sah " + scene);
     EXPECT_EQ(sah.code, 0) << sah.err;
@@ -121,6 +122,26 @@ TEST(Cli, InfoPrintsTheMeshBuildsPhasesForTheMedianSplitOnly) {
     const CliRun builtin = run("info");  // no mesh
     EXPECT_EQ(builtin.code, 0) << builtin.err;
     EXPECT_EQ(builtin.out.find("mesh builds"), std::string::npos) << builtin.out;
+}
+
+TEST(Cli, InfoPrintsBothTreesOfEveryMesh) {
+    const std::string obj = temp_file("raylane_info_trees.obj",
+                                      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 2 1\n"
+                                      "f 1 2 3\nf 2 4 3\nf 3 4 5\n");
+    const std::string scene = mesh_scene("raylane_info_trees_scene.json", obj);
+    for (const char* bvh : {"", "--bvh sah "}) {
+        const CliRun r = run(std::string("info ") + bvh + scene);
+        EXPECT_EQ(r.code, 0) << r.err;
+        EXPECT_NE(r.out.find("binary tree (scalar path):"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("bytes per triangle (nodes, ids, vertices)"), std::string::npos);
+        const size_t wide = r.out.find("wide tree (packet path): ");
+        ASSERT_NE(wide, std::string::npos) << r.out;
+        const std::string line = r.out.substr(wide, r.out.find('\n', wide) - wide);
+        EXPECT_NE(line.find(" nodes, "), std::string::npos) << line;
+        EXPECT_NE(line.find(" children per node, "), std::string::npos) << line;
+        EXPECT_NE(line.find(" triangles per leaf"), std::string::npos) << line;
+        EXPECT_NE(r.out.find("bytes per triangle (wide nodes, ids, vertices)"), std::string::npos);
+    }
 }
 
 TEST(Cli, RenderWritesTheImageAndReportsTiming) {
