@@ -22,9 +22,9 @@
 #include "io/load_image.h"
 #include "io/load_mesh.h"
 #include "io/model_path.h"
+#include "scene/brdf_presets.h"
 #include "scene/mesh_normals.h"
 #include "scene/transform.h"
-#include "scene/brdf_presets.h"
 
 namespace raylane {
 

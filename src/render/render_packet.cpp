@@ -10,11 +10,11 @@
 
 #include "core/rng.h"
 #include "render/camera_rays_packet.h"
-#include "shade/path_queue.h"
 #include "render/sample_sum_packet.h"
 #include "render/tiles.h"
 #include "scene/features.h"
 #include "shade/optics_scalar.h"
+#include "shade/path_queue.h"
 #include "shade/shade_io_packet.h"
 #include "shade/shade_packet.h"
 #include "simd/hash.h"

@@ -9,10 +9,10 @@
 #include <limits>
 
 #include "accel/bvh.h"
-#include "support/median_reference.h"
-#include "support/sha256.h"
 #include "core/rng.h"
 #include "io/load_mesh.h"
+#include "support/median_reference.h"
+#include "support/sha256.h"
 
 namespace raylane {
 namespace {

@@ -7,8 +7,8 @@
 #include <filesystem>
 
 #include "accel/bvh.h"
-#include "support/random_boxes.h"
 #include "io/load_mesh.h"
+#include "support/random_boxes.h"
 
 namespace raylane {
 namespace {

@@ -1,5 +1,5 @@
-// tests for io/model_path.cpp: search order, RAYLANE_MODEL_PATH (no folder of the source tree) and the
-// not-found message.
+// tests for io/model_path.cpp: search order, RAYLANE_MODEL_PATH (no folder of the source tree) and
+// the not-found message.
 #include "io/model_path.h"
 
 #include <gtest/gtest.h>
@@ -125,8 +125,7 @@ TEST(FindModel, NamesTheModelEveryFolderAndWhereToGetItWhenMissing) {
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     for (const std::string& part :
          {std::string("no_such_model.ply"), dirs.dir("a"), dirs.dir("b"), dirs.dir("c"),
-          std::string("Stanford 3D Scanning Repository"),
-          std::string("RAYLANE_MODEL_PATH")}) {
+          std::string("Stanford 3D Scanning Repository"), std::string("RAYLANE_MODEL_PATH")}) {
         EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
     }
 }

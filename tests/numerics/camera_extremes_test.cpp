@@ -9,9 +9,9 @@
 
 #include "core/error.h"
 #include "io/load_scene.h"
-#include "support/geometry_support.h"
 #include "render/camera_rays.h"
 #include "render/camera_rays_packet.h"
+#include "support/geometry_support.h"
 
 namespace raylane {
 namespace {

@@ -10,10 +10,10 @@
 #include "core/error.h"
 #include "io/load_obj.h"
 #include "io/load_ply.h"
-#include "support/geometry_support.h"
 #include "render/camera_rays.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "support/geometry_support.h"
 
 namespace raylane {
 namespace {

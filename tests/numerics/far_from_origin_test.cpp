@@ -10,8 +10,8 @@
 
 #include "accel/bvh.h"
 #include "io/load_scene.h"
-#include "support/geometry_support.h"
 #include "render/camera_rays.h"
+#include "support/geometry_support.h"
 
 namespace raylane {
 namespace {

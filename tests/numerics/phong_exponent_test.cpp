@@ -15,13 +15,13 @@
 #include <string>
 #include <vector>
 
-#include "support/chi_square.h"
 #include "render/camera_rays.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
+#include "support/chi_square.h"
 #include "support/float_values.h"
 #include "support/widths.h"
 

@@ -8,9 +8,9 @@
 
 #include "core/offset.h"
 #include "io/load_scene.h"
-#include "support/geometry_support.h"
 #include "render/camera_rays.h"
 #include "shade/optics_scalar.h"
+#include "support/geometry_support.h"
 #include "traverse/box_scalar.h"
 #include "traverse/sphere_scalar.h"
 

@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "support/chi_square.h"
 #include "shade/brdf_packet.h"
 #include "shade/brdf_scalar.h"
 #include "simd/lanes.h"
+#include "support/chi_square.h"
 #include "support/float_values.h"
 #include "support/widths.h"
 

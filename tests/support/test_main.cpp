@@ -10,8 +10,7 @@
 #include "render/tiles.h"
 
 int main(int argc, char** argv) {
-    ::setenv("RAYLANE_MODEL_PATH", RAYLANE_SHARED_DIR "/models:" RAYLANE_SHARED_DIR "/textures",
-             0);
+    ::setenv("RAYLANE_MODEL_PATH", RAYLANE_SHARED_DIR "/models:" RAYLANE_SHARED_DIR "/textures", 0);
     raylane::enable_flush_to_zero();
     ::testing::InitGoogleTest(&argc, argv);
     return RUN_ALL_TESTS();
