@@ -98,9 +98,9 @@ awk -v times="$times" '
     !skip { print }' docs/gallery.md >"$scratch/gallery.md"
 cp "$scratch/gallery.md" docs/gallery.md
 
-# Figure 9's false colour: nodes tested per ray, as the report counted them. Both paths count
-# per ray (for this AOV the packet path traverses each ray of its packets on its own), so the
-# two images are the same.
+# Figure 9's false colour: boxes tested per ray, as the report counted them. Both paths count
+# per ray (for this AOV the packet path traverses each ray of its packets on its own), each
+# through its own tree: the scalar path's binary tree, the packet path's wide tree.
 OUT_NAME=fig09_bunny_bvh_cost render fig09_bunny_bvh --width 400 --aov bvh-cost
 OUT_NAME=fig09_bunny_bvh_cost_scalar render fig09_bunny_bvh --width 400 --aov bvh-cost --path scalar
 
