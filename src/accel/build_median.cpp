@@ -61,9 +61,10 @@ void finish_nodes(std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes, Grow
 /// sampled_from)) and a histogram of histogram_counts. The arrays of n are taken from `lent`
 /// when the caller lends 36n bytes it will overwrite afterwards (build_mesh_accel lends the
 /// triangle-vertex array it fills next), else from the block: a fresh 4 KiB page cost 1.4–15 us
-/// where it was measured (docs/performance.md, "The whole command"), and lent pages are already
-/// in. `phases`, when given, gets the times of the centroids, the sorts and the splits,
-/// measured from `clock`. `paths`, when given, gets the ways the top nodes were split.
+/// where it was measured (docs/performance.md, "The whole command"), and lent memory's pages are
+/// faulted in once for both uses. `phases`, when given, gets the times of the centroids, the
+/// sorts and the splits, measured from `clock`. `paths`, when given, gets the ways the top nodes
+/// were split.
 template <class FillCentroids>
 Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
                 std::byte* lent = nullptr, BuildPhases* phases = nullptr,
