@@ -278,6 +278,22 @@ inline PFloat<A> load_active_bits(const void* p, const PMask<A>& m) {
 }
 }  // namespace simd_detail
 
+/// True when compact, compress_store, the masked load and store and gather_u8 are single
+/// instructions at width W: AVX-512 (with AVX-512VL at W = 4 and 8). Elsewhere they go lane by
+/// lane through memory (SSE) or through permutes, mask stores and gathers (AVX2), and a loop that
+/// compacts a packet at a time can lose to a branch-free scalar loop: the BVH build's splits took
+/// 8x as long that way at W = 4 (SSE4.2) and 1.5x at W = 8 (AVX2) on the 400k dragon (bench_build,
+/// AMD EPYC with AVX-512).
+template <int W>
+inline constexpr bool compaction_is_native =
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+    W == 4 || W == 8 || W == 16;
+#elif defined(__AVX512F__)
+    W == 16;
+#else
+    false;
+#endif
+
 /// The active lanes' values moved to lanes 0 .. count(m) - 1 in lane order; other lanes are 0.
 /// AVX-512 uses vcompressps (W = 4, 8 too with AVX-512VL); AVX2 + BMI2 at W = 8 a pext-built
 /// permutation; otherwise a loop through memory.

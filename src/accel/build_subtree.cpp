@@ -32,21 +32,33 @@ struct Builder {
     uint32_t leaf_base;  ///< the subtree's first position in the tree's prim_ids
 
     /// Stable partition of in[begin, end) into out: ids whose side stamp differs from `stamp`
-    /// first (from out + begin), the others from out + mid. A packet of ids at a time: their
-    /// side bytes gathered, each side's ids compressed together and stored (no write past a
-    /// side's end; the last packet's lanes past `end` are inactive).
+    /// first (from out + begin), the others from out + mid.
     void partition(const uint32_t* in, uint32_t* out, uint32_t begin, uint32_t mid, uint32_t end,
                    uint8_t stamp) const {
         constexpr int W = build_width;
-        const vint<W> s = broadcast<W>(int32_t{stamp});
         uint32_t left = begin, right = mid;
-        for (uint32_t i = begin; i < end; i += W) {
-            const vmask<W> valid = prefix_mask<W>(int(std::min(end - i, uint32_t{W})));
-            const vint<W> ids = load(as_lanes(in + i), valid);
-            const vmask<W> go_right = mask_and(valid, eq(gather_u8(side, ids, valid), s));
-            right += uint32_t(compress_store(as_lanes(out + right), ids, go_right));
-            left +=
-                uint32_t(compress_store(as_lanes(out + left), ids, mask_andnot(valid, go_right)));
+        uint32_t i = begin;
+        if constexpr (packet_loops) {
+            // a packet of ids at a time: their side bytes gathered, each side's ids compressed
+            // together and stored (no write past a side's end; the last packet's lanes past
+            // `end` are inactive)
+            const vint<W> s = broadcast<W>(int32_t{stamp});
+            for (; i < end; i += W) {
+                const vmask<W> valid = prefix_mask<W>(int(std::min(end - i, uint32_t{W})));
+                const vint<W> ids = load(as_lanes(in + i), valid);
+                const vmask<W> go_right = mask_and(valid, eq(gather_u8(side, ids, valid), s));
+                right += uint32_t(compress_store(as_lanes(out + right), ids, go_right));
+                left += uint32_t(
+                    compress_store(as_lanes(out + left), ids, mask_andnot(valid, go_right)));
+            }
+        }
+        // branch free: the side is random, a branch would mispredict half the time
+        for (; i < end; ++i) {
+            const uint32_t id = in[i];
+            const uint32_t r = side[id] == stamp;
+            out[left ^ ((left ^ right) & (0u - r))] = id;
+            right += r;
+            left += r ^ 1u;
         }
         assert(left == mid && right == end);
     }

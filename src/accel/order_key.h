@@ -1,10 +1,11 @@
 // accel: the median-split build's sort keys: a float's bits mapped to a uint32 of the same order,
-// for one float and for a packet, and the packet width of the build's vector loops.
+// for one float and for a packet, and the packet width of the build's loops.
 #pragma once
 
 #include <bit>
 #include <cstdint>
 
+#include "simd/lanes.h"
 #include "simd/math.h"
 #include "simd/simd.h"
 
@@ -13,6 +14,11 @@ namespace raylane::median_detail {
 /// The packet width of the build's vector loops: the widest this build's ISA runs (simd/simd.h).
 /// Every width gives the same tree.
 inline constexpr int build_width = native_width;
+
+/// Whether the build's loops run a packet of build_width primitives at a time: where compaction
+/// and the masked loads, stores and gathers are single instructions (simd/lanes.h). Elsewhere the
+/// branch-free scalar loops run alone (packet loops made the splits up to 8x slower there).
+inline constexpr bool packet_loops = compaction_is_native<build_width>;
 
 /// A float's sign bit, and the top bit of a key.
 inline constexpr uint32_t sign_bit = 0x80000000u;

@@ -137,7 +137,9 @@ SplitKey select_split(const float* c, uint32_t begin, uint32_t end, uint32_t lef
     BracketGather g{bracket_of_sample(sample, samples, left, count), keys, capacity};
     bool fits = true;
     uint32_t i = begin;
-    for (; fits && i + W <= end; i += W) fits = g.add(order_keys(load<W>(c + i)), vmask<W>(true));
+    if constexpr (packet_loops)
+        for (; fits && i + W <= end; i += W)
+            fits = g.add(order_keys(load<W>(c + i)), vmask<W>(true));
     for (; fits && i < end; ++i) fits = g.add(order_key(c[i]));
     if (fits)
         if (const auto s = g.median(left)) {
@@ -180,14 +182,16 @@ std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uin
     SplitSweep sweep{split};
     bool fits = true;
     uint32_t i = begin;
-    for (; fits && i + W <= end; i += W) {
-        const vint<W> key = order_keys(load<W>(c + i));
-        const vmask<W> go_left = sweep.first(key, vmask<W>(true));
-        vint<W> child_key[2];
-        for (int side = 0; side < 2; ++side)
-            child_key[side] =
-                child_axis[side] == axis ? key : order_keys(load<W>(child_c[side] + i));
-        fits = g[0].add(child_key[0], go_left) && g[1].add(child_key[1], mask_not(go_left));
+    if constexpr (packet_loops) {
+        for (; fits && i + W <= end; i += W) {
+            const vint<W> key = order_keys(load<W>(c + i));
+            const vmask<W> go_left = sweep.first(key, vmask<W>(true));
+            vint<W> child_key[2];
+            for (int side = 0; side < 2; ++side)
+                child_key[side] =
+                    child_axis[side] == axis ? key : order_keys(load<W>(child_c[side] + i));
+            fits = g[0].add(child_key[0], go_left) && g[1].add(child_key[1], mask_not(go_left));
+        }
     }
     for (; fits && i < end; ++i) {
         const uint32_t side = sweep.first(order_key(c[i])) ^ 1u;

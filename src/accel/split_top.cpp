@@ -31,13 +31,15 @@ KeyBounds key_bounds(const TopArrays& a, uint32_t begin, uint32_t end) {
     for (int k = 0; k < 3; ++k) {
         const float* c = a.c2[k];
         uint32_t i = begin;
-        vint<W> lo = broadcast<W>(~0u), hi = broadcast<W>(0u);
-        for (; i + W <= end; i += W) {
-            const vint<W> key = order_keys(load<W>(c + i));
-            lo = min_u32(lo, key);
-            hi = max_u32(hi, key);
+        if constexpr (packet_loops) {
+            vint<W> lo = broadcast<W>(~0u), hi = broadcast<W>(0u);
+            for (; i + W <= end; i += W) {
+                const vint<W> key = order_keys(load<W>(c + i));
+                lo = min_u32(lo, key);
+                hi = max_u32(hi, key);
+            }
+            grow(b, k, lo, hi);
         }
-        grow(b, k, lo, hi);
         for (; i < end; ++i) {
             const uint32_t key = order_key(c[i]);
             b.lo[k] = std::min(b.lo[k], key);
@@ -52,6 +54,12 @@ int longest_axis(const KeyBounds& b) {
     float extent[3];
     for (int k = 0; k < 3; ++k) extent[k] = key_value(b.hi[k]) - key_value(b.lo[k]);
     return median_detail::longest_axis(extent);
+}
+
+/// Copies primitive i of a top buffer to position `at` of another.
+void copy_primitive(const TopArrays& from, uint32_t i, const TopArrays& to, uint32_t at) {
+    to.ids[at] = from.ids ? from.ids[i] : i;
+    for (int k = 0; k < 3; ++k) to.c2[k][at] = from.c2[k][i];
 }
 
 /// Moves the primitives i .. i + build_width - 1 of `from` that `valid` holds to `to`: those of
@@ -86,21 +94,31 @@ vmask<build_width> valid_from(uint32_t i, uint32_t end) {
 }
 
 /// Stable partition of a top node's ids and centroids, cur[begin, end), into other: the
-/// primitives that `split` on `axis` sends to the first child from begin, the rest from mid. A
-/// packet at a time: each side's ids and centroids compressed together and stored (no write
-/// past a side's end; the last packet's lanes past `end` are inactive).
+/// primitives that `split` on `axis` sends to the first child from begin, the rest from mid.
 void partition_top(const TopArrays& cur, const TopArrays& other, uint32_t begin, uint32_t mid,
                    uint32_t end, int axis, SplitKey split) {
     constexpr int W = build_width;
     const float* c = cur.c2[axis];
     SplitSweep sweep{split};
-    uint32_t l = begin, r = mid;
-    for (uint32_t i = begin; i < end; i += W) {
-        const vmask<W> valid = valid_from(i, end);
-        const vmask<W> go_left = sweep.first(order_keys(load(c + i, valid)), valid);
-        const vmask<W> go[2] = {go_left, mask_andnot(valid, go_left)};
-        uint32_t* at[2] = {&l, &r};
-        store_compressed(cur, other, i, valid, go, at, 2);
+    uint32_t l = begin, r = mid, i = begin;
+    if constexpr (packet_loops) {
+        // a packet at a time: each side's ids and centroids compressed together and stored (no
+        // write past a side's end; the last packet's lanes past `end` are inactive)
+        for (; i < end; i += W) {
+            const vmask<W> valid = valid_from(i, end);
+            const vmask<W> go_left = sweep.first(order_keys(load(c + i, valid)), valid);
+            const vmask<W> go[2] = {go_left, mask_andnot(valid, go_left)};
+            uint32_t* at[2] = {&l, &r};
+            store_compressed(cur, other, i, valid, go, at, 2);
+        }
+    }
+    // branch free (the side is unpredictable)
+    for (; i < end; ++i) {
+        const uint32_t go_left = sweep.first(order_key(c[i]));
+        const uint32_t at = r ^ ((l ^ r) & (0u - go_left));
+        copy_primitive(cur, i, other, at);
+        l += go_left;
+        r += go_left ^ 1u;
     }
     assert(l == mid && r == end);
 }
@@ -113,25 +131,27 @@ std::array<KeyBounds, 2> child_key_bounds(const TopArrays& cur, uint32_t begin, 
     std::array<KeyBounds, 2> b;
     SplitSweep sweep{split};
     uint32_t i = begin;
-    vint<W> lo[2][3], hi[2][3];
-    for (int side = 0; side < 2; ++side)
-        for (int k = 0; k < 3; ++k) {
-            lo[side][k] = broadcast<W>(~0u);
-            hi[side][k] = broadcast<W>(0u);
-        }
-    for (; i + W <= end; i += W) {
-        vint<W> key[3];
-        for (int k = 0; k < 3; ++k) key[k] = order_keys(load<W>(cur.c2[k] + i));
-        const vmask<W> go_left = sweep.first(key[axis], vmask<W>(true));
-        const vmask<W> go[2] = {go_left, mask_not(go_left)};
+    if constexpr (packet_loops) {
+        vint<W> lo[2][3], hi[2][3];
         for (int side = 0; side < 2; ++side)
             for (int k = 0; k < 3; ++k) {
-                lo[side][k] = min_u32(lo[side][k], key[k], go[side]);
-                hi[side][k] = max_u32(hi[side][k], key[k], go[side]);
+                lo[side][k] = broadcast<W>(~0u);
+                hi[side][k] = broadcast<W>(0u);
             }
+        for (; i + W <= end; i += W) {
+            vint<W> key[3];
+            for (int k = 0; k < 3; ++k) key[k] = order_keys(load<W>(cur.c2[k] + i));
+            const vmask<W> go_left = sweep.first(key[axis], vmask<W>(true));
+            const vmask<W> go[2] = {go_left, mask_not(go_left)};
+            for (int side = 0; side < 2; ++side)
+                for (int k = 0; k < 3; ++k) {
+                    lo[side][k] = min_u32(lo[side][k], key[k], go[side]);
+                    hi[side][k] = max_u32(hi[side][k], key[k], go[side]);
+                }
+        }
+        for (int side = 0; side < 2; ++side)
+            for (int k = 0; k < 3; ++k) grow(b[side], k, lo[side][k], hi[side][k]);
     }
-    for (int side = 0; side < 2; ++side)
-        for (int k = 0; k < 3; ++k) grow(b[side], k, lo[side][k], hi[side][k]);
     for (; i < end; ++i) {
         uint32_t key[3];
         for (int k = 0; k < 3; ++k) key[k] = order_key(cur.c2[k][i]);
@@ -146,7 +166,7 @@ std::array<KeyBounds, 2> child_key_bounds(const TopArrays& cur, uint32_t begin, 
 
 /// Stable partition of a top node's primitives, cur[begin, end), into the ranges of its four
 /// grandchildren in other: split by `split` on `axis`, then each child by child[side] on
-/// child_axis[side]. A packet at a time, as partition_top.
+/// child_axis[side].
 void partition_four(const TopArrays& cur, const TopArrays& other, uint32_t begin, uint32_t end,
                     int axis, SplitKey split, const int child_axis[2],
                     const std::array<SplitKey, 2>& child) {
@@ -157,20 +177,28 @@ void partition_four(const TopArrays& cur, const TopArrays& other, uint32_t begin
     const float* c = cur.c2[axis];
     const float* child_c[2] = {cur.c2[child_axis[0]], cur.c2[child_axis[1]]};
     SplitSweep sweep{split}, child_sweep[2] = {{child[0]}, {child[1]}};
-    for (uint32_t i = begin; i < end; i += W) {
-        const vmask<W> valid = valid_from(i, end);
-        const vint<W> key = order_keys(load(c + i, valid));
-        const vmask<W> first = sweep.first(key, valid);
-        vmask<W> go[4];
-        for (int s = 0; s < 2; ++s) {
-            const vmask<W> among = s == 0 ? first : mask_andnot(valid, first);
-            const vint<W> child_key =
-                child_axis[s] == axis ? key : order_keys(load(child_c[s] + i, valid));
-            go[2 * s] = child_sweep[s].first(child_key, among);
-            go[2 * s + 1] = mask_andnot(among, go[2 * s]);
+    uint32_t i = begin;
+    if constexpr (packet_loops) {
+        for (; i < end; i += W) {  // a packet at a time, as partition_top
+            const vmask<W> valid = valid_from(i, end);
+            const vint<W> key = order_keys(load(c + i, valid));
+            const vmask<W> first = sweep.first(key, valid);
+            vmask<W> go[4];
+            for (int s = 0; s < 2; ++s) {
+                const vmask<W> among = s == 0 ? first : mask_andnot(valid, first);
+                const vint<W> child_key =
+                    child_axis[s] == axis ? key : order_keys(load(child_c[s] + i, valid));
+                go[2 * s] = child_sweep[s].first(child_key, among);
+                go[2 * s + 1] = mask_andnot(among, go[2 * s]);
+            }
+            uint32_t* const to[4] = {&at[0], &at[1], &at[2], &at[3]};
+            store_compressed(cur, other, i, valid, go, to, 4);
         }
-        uint32_t* const to[4] = {&at[0], &at[1], &at[2], &at[3]};
-        store_compressed(cur, other, i, valid, go, to, 4);
+    }
+    for (; i < end; ++i) {
+        const uint32_t s = sweep.first(order_key(c[i])) ^ 1u;
+        const uint32_t q = 2 * s + (child_sweep[s].first(order_key(child_c[s][i])) ^ 1u);
+        copy_primitive(cur, i, other, at[q]++);
     }
     for (int q = 0; q < 4; ++q) assert(at[q] == ends[q]);
 }
