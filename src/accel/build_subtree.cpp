@@ -8,7 +8,7 @@
 
 #include "accel/order_key.h"
 #include "accel/radix_sort.h"
-#include "simd/lanes.h"
+#include "simd/array_packets.h"
 
 namespace raylane::median_detail {
 namespace {

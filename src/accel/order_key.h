@@ -5,7 +5,7 @@
 #include <bit>
 #include <cstdint>
 
-#include "simd/lanes.h"
+#include "simd/array_packets.h"
 #include "simd/math.h"
 #include "simd/simd.h"
 
