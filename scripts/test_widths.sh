@@ -5,8 +5,9 @@
 # packet BRDFs and textures, the stiff and extreme cases, the BVH build, and the packet renderer
 # against the scalar one. The release build tests W = 4 and 8 too, but compiled for the host's
 # widest instruction set (AVX-512 on the CI machine), so the AVX2 and SSE code paths of simd/
-# (compaction, gathers, stores) and the fall-backs of src/ (the build's partition) only run
-# here. CI runs it after scripts/test.sh.
+# (compaction, gathers, masked loads and stores, unsigned compares) and the scalar loops of src/
+# (the BVH build's, which run where compaction is not native) only run here. CI runs it after
+# scripts/test.sh.
 #
 #   scripts/test_widths.sh [PRESET...]   default: avx2 sse4
 #

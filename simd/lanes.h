@@ -160,6 +160,13 @@ inline vmask<W> mask_from_bits(uint32_t b) {
     }
 }
 
+/// Lanes 0 .. n - 1 active, the others not (0 <= n <= W): the valid lanes of a loop's last,
+/// partial packet.
+template <int W>
+inline vmask<W> prefix_mask(int n) {
+    return mask_from_bits<W>((1u << n) - 1u);
+}
+
 /// Whether any / all / no lanes are active, and how many are.
 inline bool any(bool m) { return m; }
 inline bool all(bool m) { return m; }
@@ -186,6 +193,21 @@ template <AnyMask M>
 inline int first_active(const M& m) {
     const uint32_t b = bits(m);
     return b == 0 ? -1 : std::countr_zero(b);
+}
+
+/// The first n active lanes of m (in lane order); all of them when m has no more than n.
+template <AnyMask M>
+inline M keep_first_active(const M& m, uint32_t n) {
+    uint32_t b = bits(m);
+    if (static_cast<uint32_t>(std::popcount(b)) <= n) return m;
+#if defined(__BMI2__)
+    b = _pdep_u32((1u << n) - 1u, b);  // n < popcount(b) <= 16: the low n set bits of b
+#else
+    uint32_t kept = 0;
+    for (; n > 0; --n, b &= b - 1) kept |= b & (0u - b);  // the lowest set bit, n times
+    b = kept;
+#endif
+    return mask_from_bits<width_of<M>>(b);
 }
 
 /// Calls f(lane) for each active lane in increasing lane order (lane is an int).

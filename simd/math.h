@@ -1,5 +1,6 @@
 // simd: lane arithmetic with one defined behaviour at every W, where xsimd 8.1 lacks it or differs
-// from float / uint32 (min/max NaN order, neg, wrapping ints, fma, reciprocals, reductions).
+// from float / uint32 (min/max NaN order, neg, wrapping ints, uint32 min/max, fma, reciprocals,
+// reductions).
 #pragma once
 
 #include <cmath>
@@ -135,6 +136,92 @@ inline PInt<A> shift_right_logical(const PInt<A>& v) {
 template <int K, class A>
 inline PInt<A> shift_right_arith(const PInt<A>& v) {
     return v >> K;
+}
+
+// ---- uint32 order ----------------------------------------------------------------------------
+// Int lanes read as uint32 (sort keys, ids): lane-wise min and max, on every lane or on the
+// active ones, and the smallest and largest lane.
+
+/// The smaller and the larger of a and b as uint32, lane by lane.
+inline int32_t min_u32(int32_t a, int32_t b) { return lt_u32(a, b) ? a : b; }
+inline int32_t max_u32(int32_t a, int32_t b) { return lt_u32(a, b) ? b : a; }
+template <class A>
+inline PInt<A> min_u32(const PInt<A>& a, const PInt<A>& b) {
+    [[maybe_unused]] constexpr int w = width_of<PInt<A>>;
+#if defined(__AVX512F__)
+    if constexpr (w == 16) return _mm512_min_epu32(a, b);
+#endif
+#if defined(__AVX2__)
+    if constexpr (w == 8) return _mm256_min_epu32(a, b);
+#endif
+#if defined(__SSE4_1__)
+    if constexpr (w == 4) return _mm_min_epu32(a, b);
+#endif
+    return select(lt_u32(a, b), a, b);
+}
+template <class A>
+inline PInt<A> max_u32(const PInt<A>& a, const PInt<A>& b) {
+    [[maybe_unused]] constexpr int w = width_of<PInt<A>>;
+#if defined(__AVX512F__)
+    if constexpr (w == 16) return _mm512_max_epu32(a, b);
+#endif
+#if defined(__AVX2__)
+    if constexpr (w == 8) return _mm256_max_epu32(a, b);
+#endif
+#if defined(__SSE4_1__)
+    if constexpr (w == 4) return _mm_max_epu32(a, b);
+#endif
+    return select(lt_u32(a, b), b, a);
+}
+
+/// min_u32 / max_u32 on the active lanes; inactive lanes keep a (a running bound that only the
+/// active lanes move).
+inline int32_t min_u32(int32_t a, int32_t b, bool m) { return m ? min_u32(a, b) : a; }
+inline int32_t max_u32(int32_t a, int32_t b, bool m) { return m ? max_u32(a, b) : a; }
+template <class A>
+inline PInt<A> min_u32(const PInt<A>& a, const PInt<A>& b, const PMask<A>& m) {
+#if defined(__AVX512F__)
+    if constexpr (width_of<PInt<A>> == 16)
+        return _mm512_mask_min_epu32(a, static_cast<__mmask16>(m), a, b);
+#endif
+    return select(m, min_u32(a, b), a);
+}
+template <class A>
+inline PInt<A> max_u32(const PInt<A>& a, const PInt<A>& b, const PMask<A>& m) {
+#if defined(__AVX512F__)
+    if constexpr (width_of<PInt<A>> == 16)
+        return _mm512_mask_max_epu32(a, static_cast<__mmask16>(m), a, b);
+#endif
+    return select(m, max_u32(a, b), a);
+}
+
+/// The smallest and the largest lane as uint32 (every lane counts). Through memory: for the end
+/// of a loop, not its body (GCC 12's _mm512_reduce_min_epu32 warns of an uninitialised variable).
+inline uint32_t hmin_u32(int32_t v) { return static_cast<uint32_t>(v); }
+inline uint32_t hmax_u32(int32_t v) { return static_cast<uint32_t>(v); }
+template <class A>
+inline uint32_t hmin_u32(const PInt<A>& v) {
+    constexpr int w = width_of<PInt<A>>;
+    alignas(64) int32_t lanes[w];
+    v.store_aligned(lanes);
+    uint32_t m = static_cast<uint32_t>(lanes[0]);
+    for (int i = 1; i < w; ++i) {
+        const uint32_t x = static_cast<uint32_t>(lanes[i]);
+        m = x < m ? x : m;
+    }
+    return m;
+}
+template <class A>
+inline uint32_t hmax_u32(const PInt<A>& v) {
+    constexpr int w = width_of<PInt<A>>;
+    alignas(64) int32_t lanes[w];
+    v.store_aligned(lanes);
+    uint32_t m = static_cast<uint32_t>(lanes[0]);
+    for (int i = 1; i < w; ++i) {
+        const uint32_t x = static_cast<uint32_t>(lanes[i]);
+        m = x > m ? x : m;
+    }
+    return m;
 }
 
 // ---- fused multiply-add ---------------------------------------------------------------------

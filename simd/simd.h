@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 
 // GCC 12's AVX-512 intrinsics (_mm512_undefined_ps: "__m512 __Y = __Y;") warn -W[maybe-]
@@ -259,6 +260,31 @@ inline PMask<A> lt(const PInt<A>& a, const PInt<A>& b) {
 template <class A>
 inline PMask<A> gt(const PInt<A>& a, const PInt<A>& b) {
     return xsimd::bool_cast(a > b);
+}
+
+/// Unsigned comparisons of int lanes read as uint32 (keys, ids), as float-compatible masks:
+/// a < b and a <= b. AVX-512 compares unsigned lanes itself; elsewhere the sign bits are flipped
+/// and the lanes compared signed.
+inline bool lt_u32(int32_t a, int32_t b) {
+    return static_cast<uint32_t>(a) < static_cast<uint32_t>(b);
+}
+inline bool le_u32(int32_t a, int32_t b) {
+    return static_cast<uint32_t>(a) <= static_cast<uint32_t>(b);
+}
+template <class A>
+inline PMask<A> lt_u32(const PInt<A>& a, const PInt<A>& b) {
+#if defined(__AVX512F__)
+    if constexpr (width_of<PInt<A>> == 16) return PMask<A>(_mm512_cmplt_epu32_mask(a, b));
+#endif
+    const PInt<A> sign(std::numeric_limits<int32_t>::min());
+    return lt(a ^ sign, b ^ sign);
+}
+template <class A>
+inline PMask<A> le_u32(const PInt<A>& a, const PInt<A>& b) {
+#if defined(__AVX512F__)
+    if constexpr (width_of<PInt<A>> == 16) return PMask<A>(_mm512_cmple_epu32_mask(a, b));
+#endif
+    return mask_not(lt_u32(b, a));
 }
 
 // ---- conversions ----------------------------------------------------------------------------

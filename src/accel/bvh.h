@@ -40,6 +40,9 @@ struct Bvh {
 /// comparison option.
 enum class BvhBuild { median, sah };
 
+/// BuildParams::median_subtree's default, 2^17 (131,072) primitives.
+inline constexpr uint32_t default_median_subtree = uint32_t(1) << 17;
+
 struct BuildParams {
     int max_leaf_size = 4;  ///< leaves hold at most this many primitives (1 .. 65535)
     BvhBuild method = BvhBuild::median;
@@ -47,7 +50,7 @@ struct BuildParams {
     /// of at most this many is built in arrays of its own, about 52 bytes per primitive (6.8 MB
     /// at the default, 2^17, which built the 400k and 1.6M dragons fastest on the development
     /// machine: BM_BuildMedianSubtree). Any value (from 1) gives the same tree.
-    uint32_t median_subtree = uint32_t(1) << 17;
+    uint32_t median_subtree = default_median_subtree;
 };
 
 /// How a median-split build found the splits of its nodes above BuildParams::median_subtree.
@@ -64,8 +67,13 @@ struct MedianSplitPaths {
 };
 
 /// Median split (the report's build): split along the longest axis of the centroid bounds at the
-/// median centroid (std::nth_element), equal halves, until a node has <= max_leaf_size
-/// primitives. O(n log n). `paths`, when given, gets the counts above.
+/// median centroid (ties by primitive index), equal halves, until a node has <= max_leaf_size
+/// primitives. The primitive ids are radix sorted by centroid once per axis, and a node splits
+/// at the middle of its longest axis's list, partitioning the other two lists stably; a node of
+/// more than BuildParams::median_subtree primitives instead finds its median key by a radix
+/// select and partitions its primitives, and each node of at most that many becomes such a
+/// sorted build of its own. O(n log n); the same tree as std::nth_element's
+/// (tests/accel/median_reference.h). `paths`, when given, gets the counts above.
 Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params,
                      MedianSplitPaths* paths = nullptr);
 

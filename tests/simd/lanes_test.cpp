@@ -157,6 +157,29 @@ TYPED_TEST(LanesTest, AnyAllNoneCountAndFirstActiveAgreeWithTheBits) {
     EXPECT_EQ(first_active(mask_from_bits<W>(1u << (W - 1))), W - 1);
 }
 
+TYPED_TEST(LanesTest, PrefixMaskHoldsTheFirstNLanes) {
+    constexpr int W = TypeParam::value;
+    for (int n = 0; n <= W; ++n) ASSERT_EQ(bits(prefix_mask<W>(n)), (1u << n) - 1u) << n;
+}
+
+TYPED_TEST(LanesTest, KeepFirstActiveKeepsTheLowestNActiveLanes) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(28);
+    for (int r = 0; r < rounds; ++r) {
+        const uint32_t b = random_bits<W>(rng, r);
+        const uint32_t n = static_cast<uint32_t>(rng() % (W + 2));  // more than the lanes too
+        uint32_t want = 0, kept = 0;
+        for (int l = 0; l < W; ++l) {
+            if (((b >> l) & 1u) && kept < n) {
+                want |= 1u << l;
+                ++kept;
+            }
+        }
+        ASSERT_EQ(bits(keep_first_active(mask_from_bits<W>(b), n)), want)
+            << "bits " << b << ", n " << n;
+    }
+}
+
 TYPED_TEST(LanesTest, ForEachActiveVisitsActiveLanesInOrder) {
     constexpr int W = TypeParam::value;
     std::mt19937 rng(23);

@@ -1,13 +1,16 @@
 // tests for simd/math.h at every supported width against scalar oracles: min/max NaN order, neg,
-// wrapping ints, fma, reciprocals, sign bits, masked reductions; and the contraction canary.
+// wrapping ints, uint32 min/max, fma, reciprocals, sign bits, masked reductions; and the
+// contraction canary.
 #include "simd/math.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <string>
@@ -130,6 +133,59 @@ TYPED_TEST(MathTest, IntArithmeticWrapsLikeUint32) {
             // arithmetic shift: floor division by 2^13
             ASSERT_EQ(sra[l], static_cast<int32_t>(std::floor(static_cast<double>(a[l]) / 8192.0)));
         }
+    }
+}
+
+// ---- uint32 order ----------------------------------------------------------------------------
+
+/// Random uint32 lane bits, a third of them at the edges of the signed and unsigned orders.
+template <int W>
+std::array<int32_t, W> uint32_lanes(std::mt19937& rng) {
+    static constexpr uint32_t edges[] = {0u, 1u, 0x7fffffffu, 0x80000000u, 0x80000001u, ~0u};
+    std::array<int32_t, W> a;
+    for (int32_t& v : a)
+        v = static_cast<int32_t>(rng() % 3 == 0 ? edges[rng() % std::size(edges)] : rng());
+    return a;
+}
+
+TYPED_TEST(MathTest, Uint32MinAndMaxOrderLanesAsUnsigned) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(30);
+    for (int r = 0; r < rounds; ++r) {
+        const auto a = uint32_lanes<W>(rng);
+        auto b = uint32_lanes<W>(rng);
+        if (r % 5 == 0) b = a;
+        // every 8th mask all-off, every 8th (offset) all-on
+        const uint32_t active = r % 8 == 0 ? 0u : (r % 8 == 4 ? ~0u : static_cast<uint32_t>(rng()));
+        const vint<W> va = load<W>(a.data());
+        const vint<W> vb = load<W>(b.data());
+        const vmask<W> m = mask_from_bits<W>(active);
+        const auto lo = lanes_of<W>(min_u32(va, vb)), hi = lanes_of<W>(max_u32(va, vb));
+        const auto masked_lo = lanes_of<W>(min_u32(va, vb, m));
+        const auto masked_hi = lanes_of<W>(max_u32(va, vb, m));
+        for (int l = 0; l < W; ++l) {
+            const uint32_t ua = static_cast<uint32_t>(a[l]), ub = static_cast<uint32_t>(b[l]);
+            const bool on = (active >> l) & 1u;
+            ASSERT_EQ(static_cast<uint32_t>(lo[l]), std::min(ua, ub));
+            ASSERT_EQ(static_cast<uint32_t>(hi[l]), std::max(ua, ub));
+            ASSERT_EQ(static_cast<uint32_t>(masked_lo[l]), on ? std::min(ua, ub) : ua);
+            ASSERT_EQ(static_cast<uint32_t>(masked_hi[l]), on ? std::max(ua, ub) : ua);
+        }
+    }
+}
+
+TYPED_TEST(MathTest, Uint32ReductionsFindTheSmallestAndLargestLane) {
+    constexpr int W = TypeParam::value;
+    std::mt19937 rng(31);
+    for (int r = 0; r < rounds; ++r) {
+        const auto a = uint32_lanes<W>(rng);
+        uint32_t want_lo = ~0u, want_hi = 0u;
+        for (const int32_t v : a) {
+            want_lo = std::min(want_lo, static_cast<uint32_t>(v));
+            want_hi = std::max(want_hi, static_cast<uint32_t>(v));
+        }
+        ASSERT_EQ(hmin_u32(load<W>(a.data())), want_lo);
+        ASSERT_EQ(hmax_u32(load<W>(a.data())), want_hi);
     }
 }
 

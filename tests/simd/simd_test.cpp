@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <string>
@@ -182,6 +183,31 @@ TYPED_TEST(SimdTest, IntBitOpsAndComparisonsMatchScalarCpp) {
             ASSERT_EQ(equal[l], a[l] == b[l]);
             ASSERT_EQ(less[l], a[l] < b[l]);
             ASSERT_EQ(greater[l], a[l] > b[l]);
+        }
+    }
+}
+
+TYPED_TEST(SimdTest, UnsignedComparisonsReadIntLanesAsUint32) {
+    constexpr int W = TypeParam::value;
+    static constexpr uint32_t edges[] = {0u, 1u, 0x7fffffffu, 0x80000000u, 0x80000001u, ~0u};
+    std::mt19937 rng(16);
+    const auto draw = [&] {
+        return static_cast<int32_t>(rng() % 3 == 0 ? edges[rng() % std::size(edges)] : rng());
+    };
+    for (int r = 0; r < rounds; ++r) {
+        std::array<int32_t, W> a, b;
+        for (int l = 0; l < W; ++l) {
+            a[l] = draw();
+            b[l] = r % 5 == 0 ? a[l] : draw();
+        }
+        const vint<W> va = load<W>(a.data());
+        const vint<W> vb = load<W>(b.data());
+        const auto less = mask_lanes<W>(lt_u32(va, vb));
+        const auto less_equal = mask_lanes<W>(le_u32(va, vb));
+        for (int l = 0; l < W; ++l) {
+            const uint32_t ua = static_cast<uint32_t>(a[l]), ub = static_cast<uint32_t>(b[l]);
+            ASSERT_EQ(less[l], ua < ub) << std::hex << ua << " < " << ub;
+            ASSERT_EQ(less_equal[l], ua <= ub) << std::hex << ua << " <= " << ub;
         }
     }
 }
