@@ -21,6 +21,12 @@ struct WideRef {
     uint32_t count = 0;
 };
 
+/// Asks for a wide node's four cache lines.
+inline void prefetch_node(const WideNode* node) {
+    const char* p = reinterpret_cast<const char*>(node);
+    for (int line = 0; line < int(sizeof(WideNode)); line += 64) __builtin_prefetch(p + line);
+}
+
 /// A slot entered by some lanes: where it leads, those lanes (bits), and the smallest entry
 /// distance among them.
 struct WideEntry {
@@ -93,6 +99,8 @@ void intersect_mesh_closest_wide(const MeshAccel& mesh, uint32_t object, const R
                     select(active, *nodes_visited + vint<W>(node.children), *nodes_visited);
             WideEntry entered[wide_arity];
             const int n = enter_children(node, sr, rays.t_min, limit, m, entered);
+            for (int i = 0; i < n && i < 2; ++i)  // the next nodes' boxes: four cache lines each
+                if (entered[i].ref.count == 0) prefetch_node(nodes + entered[i].ref.child);
             if (n > 0) {
                 for (int i = n - 1; i > 0; --i) stack[top++] = entered[i];
                 ref = entered[0].ref;
@@ -140,6 +148,8 @@ vmask<W> intersect_mesh_any_wide(const MeshAccel& mesh, const RayPacket<W>& rays
             // children: the nearest goes on, the others pushed, farthest first
             WideEntry entered[wide_arity];
             const int n = enter_children(nodes[ref.child], sr, rays.t_min, rays.t_max, m, entered);
+            for (int i = 0; i < n && i < 2; ++i)
+                if (entered[i].ref.count == 0) prefetch_node(nodes + entered[i].ref.child);
             if (n > 0) {
                 for (int i = n - 1; i > 0; --i) stack[top++] = entered[i];
                 ref = entered[0].ref;
