@@ -201,104 +201,80 @@ void assign_face_roles(const std::string& file, PlyElement& e) {
     prop.role = role_indices;
 }
 
-PlyHeader parse_header(std::string_view bytes, const std::string& file) {
-    PlyHeader header;
-    const char* cur = bytes.data();
-    const char* end = bytes.data() + bytes.size();
-    size_t line = 0;
-    bool has_format = false;
-    bool ended = false;
-    while (cur < end && !ended) {
-        const void* newline = std::memchr(cur, '\n', static_cast<size_t>(end - cur));
-        const char* line_end = newline ? static_cast<const char*>(newline) : end;
-        ++line;
-        Tokens tokens{cur, line_end};
-        cur = newline ? line_end + 1 : end;
-        std::string_view keyword = tokens.next();
-        if (line == 1) {
-            if (keyword != "ply" || !tokens.next().empty()) {
-                fail_line(file, 1, "not a PLY file: the first line must be 'ply'");
-            }
-            continue;
-        }
-        if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
-        if (keyword == "format") {
-            std::string_view name = tokens.next();
-            std::string_view version = tokens.next();
-            if (has_format) fail_line(file, line, "second format line");
-            if (name == "ascii") {
-                header.format = PlyFormat::ascii;
-            } else if (name == "binary_little_endian") {
-                header.format = PlyFormat::binary_little_endian;
-            } else if (name == "binary_big_endian") {
-                header.format = PlyFormat::binary_big_endian;
-            } else {
-                fail_line(file, line,
-                          "unsupported format " + quoted(name) +
-                              " (expected ascii, binary_little_endian or "
-                              "binary_big_endian)");
-            }
-            if (version != "1.0")
-                fail_line(file, line, "unsupported PLY version " + quoted(version));
-            if (!tokens.next().empty())
-                fail_line(file, line, "bad header: extra words after format");
-            has_format = true;
-        } else if (keyword == "element") {
-            PlyElement e;
-            e.name = tokens.next();
-            std::string_view count = tokens.next();
-            auto [next, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
-            if (e.name.empty() || count.empty() || ec != std::errc() ||
-                next != count.data() + count.size() || !tokens.next().empty()) {
-                fail_line(file, line, "bad header: expected 'element <name> <count>'");
-            }
-            // Only the two elements the reader uses must be unique (and this stays O(n)).
-            if ((e.name == "vertex" && header.vertex_element != SIZE_MAX) ||
-                (e.name == "face" && header.face_element != SIZE_MAX)) {
-                fail_line(file, line, "second element " + quoted(e.name));
-            }
-            if (e.name == "vertex") header.vertex_element = header.elements.size();
-            if (e.name == "face") header.face_element = header.elements.size();
-            e.line = line;
-            header.elements.push_back(std::move(e));
-        } else if (keyword == "property") {
-            if (header.elements.empty())
-                fail_line(file, line, "bad header: property before any element");
-            PlyProperty prop;
-            std::string_view type = tokens.next();
-            if (type == "list") {
-                std::string_view count_type = tokens.next();
-                prop.count_type = parse_type(count_type);
-                if (prop.count_type == PlyType::invalid) {
-                    fail_line(file, line, "unknown property type " + quoted(count_type));
-                }
-                if (!is_integer(prop.count_type)) {
-                    fail_line(file, line, "list count type must be an integer type");
-                }
-                type = tokens.next();
-            }
-            prop.type = parse_type(type);
-            if (prop.type == PlyType::invalid)
-                fail_line(file, line, "unknown property type " + quoted(type));
-            prop.name = tokens.next();
-            if (prop.name.empty() || !tokens.next().empty()) {
-                fail_line(file, line, "bad header: expected 'property <type> <name>'");
-            }
-            header.elements.back().props.push_back(prop);
-        } else if (keyword == "end_header") {
-            if (!tokens.next().empty())
-                fail_line(file, line, "bad header: extra words after end_header");
-            ended = true;
-        } else {
-            fail_line(file, line, "bad header: unknown keyword " + quoted(keyword));
-        }
+/// `format <ascii | binary_little_endian | binary_big_endian> 1.0`, once.
+void parse_format(Tokens& tokens, const std::string& file, size_t line, bool& has_format,
+                  PlyHeader& header) {
+    std::string_view name = tokens.next();
+    std::string_view version = tokens.next();
+    if (has_format) fail_line(file, line, "second format line");
+    if (name == "ascii") {
+        header.format = PlyFormat::ascii;
+    } else if (name == "binary_little_endian") {
+        header.format = PlyFormat::binary_little_endian;
+    } else if (name == "binary_big_endian") {
+        header.format = PlyFormat::binary_big_endian;
+    } else {
+        fail_line(file, line,
+                  "unsupported format " + quoted(name) +
+                      " (expected ascii, binary_little_endian or "
+                      "binary_big_endian)");
     }
-    if (line == 0) throw InputError(file + ": empty file, not a PLY file");
-    if (!ended) fail_line(file, line, "bad header: no end_header line");
-    if (!has_format) fail_line(file, line, "bad header: no format line");
-    header.body_offset = static_cast<size_t>(cur - bytes.data());
-    header.header_lines = line;
+    if (version != "1.0") fail_line(file, line, "unsupported PLY version " + quoted(version));
+    if (!tokens.next().empty()) fail_line(file, line, "bad header: extra words after format");
+    has_format = true;
+}
 
+/// `element <name> <count>`; notes which element is the vertex and which the face element.
+void parse_element(Tokens& tokens, const std::string& file, size_t line, PlyHeader& header) {
+    PlyElement e;
+    e.name = tokens.next();
+    std::string_view count = tokens.next();
+    auto [next, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
+    if (e.name.empty() || count.empty() || ec != std::errc() ||
+        next != count.data() + count.size() || !tokens.next().empty()) {
+        fail_line(file, line, "bad header: expected 'element <name> <count>'");
+    }
+    // Only the two elements the reader uses must be unique (and this stays O(n)).
+    if ((e.name == "vertex" && header.vertex_element != SIZE_MAX) ||
+        (e.name == "face" && header.face_element != SIZE_MAX)) {
+        fail_line(file, line, "second element " + quoted(e.name));
+    }
+    if (e.name == "vertex") header.vertex_element = header.elements.size();
+    if (e.name == "face") header.face_element = header.elements.size();
+    e.line = line;
+    header.elements.push_back(std::move(e));
+}
+
+/// `property <type> <name>` or `property list <count type> <item type> <name>`, of the last
+/// element.
+void parse_property(Tokens& tokens, const std::string& file, size_t line, PlyHeader& header) {
+    if (header.elements.empty()) fail_line(file, line, "bad header: property before any element");
+    PlyProperty prop;
+    std::string_view type = tokens.next();
+    if (type == "list") {
+        std::string_view count_type = tokens.next();
+        prop.count_type = parse_type(count_type);
+        if (prop.count_type == PlyType::invalid) {
+            fail_line(file, line, "unknown property type " + quoted(count_type));
+        }
+        if (!is_integer(prop.count_type)) {
+            fail_line(file, line, "list count type must be an integer type");
+        }
+        type = tokens.next();
+    }
+    prop.type = parse_type(type);
+    if (prop.type == PlyType::invalid)
+        fail_line(file, line, "unknown property type " + quoted(type));
+    prop.name = tokens.next();
+    if (prop.name.empty() || !tokens.next().empty()) {
+        fail_line(file, line, "bad header: expected 'property <type> <name>'");
+    }
+    header.elements.back().props.push_back(prop);
+}
+
+/// After the header's last line (`line`): the roles of the vertex and face properties, each
+/// element's smallest record, and the vertex and face elements present.
+void finish_elements(const std::string& file, size_t line, PlyHeader& header) {
     for (size_t i = 0; i < header.elements.size(); ++i) {
         PlyElement& e = header.elements[i];
         if (e.props.empty())
@@ -324,6 +300,49 @@ PlyHeader parse_header(std::string_view bytes, const std::string& file) {
     if (header.vertex_element == SIZE_MAX)
         fail_line(file, line, "no 'vertex' element in the header");
     if (header.face_element == SIZE_MAX) fail_line(file, line, "no 'face' element in the header");
+}
+
+PlyHeader parse_header(std::string_view bytes, const std::string& file) {
+    PlyHeader header;
+    const char* cur = bytes.data();
+    const char* end = bytes.data() + bytes.size();
+    size_t line = 0;
+    bool has_format = false;
+    bool ended = false;
+    while (cur < end && !ended) {
+        const void* newline = std::memchr(cur, '\n', static_cast<size_t>(end - cur));
+        const char* line_end = newline ? static_cast<const char*>(newline) : end;
+        ++line;
+        Tokens tokens{cur, line_end};
+        cur = newline ? line_end + 1 : end;
+        std::string_view keyword = tokens.next();
+        if (line == 1) {
+            if (keyword != "ply" || !tokens.next().empty()) {
+                fail_line(file, 1, "not a PLY file: the first line must be 'ply'");
+            }
+            continue;
+        }
+        if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
+        if (keyword == "format") {
+            parse_format(tokens, file, line, has_format, header);
+        } else if (keyword == "element") {
+            parse_element(tokens, file, line, header);
+        } else if (keyword == "property") {
+            parse_property(tokens, file, line, header);
+        } else if (keyword == "end_header") {
+            if (!tokens.next().empty())
+                fail_line(file, line, "bad header: extra words after end_header");
+            ended = true;
+        } else {
+            fail_line(file, line, "bad header: unknown keyword " + quoted(keyword));
+        }
+    }
+    if (line == 0) throw InputError(file + ": empty file, not a PLY file");
+    if (!ended) fail_line(file, line, "bad header: no end_header line");
+    if (!has_format) fail_line(file, line, "bad header: no format line");
+    header.body_offset = static_cast<size_t>(cur - bytes.data());
+    header.header_lines = line;
+    finish_elements(file, line, header);
     return header;
 }
 

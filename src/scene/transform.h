@@ -1,5 +1,5 @@
 // scene: object transforms - world_from_object from translate / rotate / scale, the mesh "fit"
-// normalisation, and baking a transform into a Mesh. Used by io/load_scene.cpp and
+// normalisation, and baking a transform into a Mesh. Used by io/load_scene_objects.cpp and
 // builtin_scene.cpp.
 #pragma once
 

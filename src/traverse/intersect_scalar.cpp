@@ -209,34 +209,65 @@ bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
     return found;
 }
 
-SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
-    SurfacePoint sp;
-    const Object& object = scene.objects[hit.object];
-    sp.material = object.material;
-    if (object.kind == ShapeKind::mesh) {
-        const Mesh& mesh = scene.meshes[object.shape];
-        const uvec3 tri = mesh.tris[hit.prim];
-        const vec3 a = mesh.positions[tri.x], b = mesh.positions[tri.y], c = mesh.positions[tri.z];
-        const float u = hit.uv.x, v = hit.uv.y, w = 1.0f - u - v;
-        sp.position = w * a + u * b + v * c;  // from barycentrics, not o + t d (numerics.md §3)
-        sp.geometric_normal = geometry_triangle(a, b, c, u, v).normal;
-        sp.shading_normal = sp.geometric_normal;
-        if (!mesh.normal_tris.empty()) {
-            const uvec3 nt = mesh.normal_tris[hit.prim];
-            const vec3 n = w * mesh.normals[nt.x] + u * mesh.normals[nt.y] + v * mesh.normals[nt.z];
-            const float len = glm::length(n);
-            if (len > 0.0f && std::isfinite(len)) sp.shading_normal = n / len;
-        }
-        sp.uv = vec2(u, v);
-        if (!mesh.uv_tris.empty()) {
-            const uvec3 ut = mesh.uv_tris[hit.prim];
-            sp.uv = w * mesh.uvs[ut.x] + u * mesh.uvs[ut.y] + v * mesh.uvs[ut.z];
-        }
-        return sp;
+namespace {
+
+// surface: the steps of surface_at, in its order; intersect_packet.cpp takes the same steps W
+// lanes at a time.
+
+/// A mesh triangle's corners: positions, and vertex normals and uvs when the mesh has them.
+struct TriangleCorners {
+    vec3 pos[3];
+    vec3 nrm[3];  ///< when has_normals
+    vec2 tex[3];  ///< when has_uvs
+    bool has_normals = false, has_uvs = false;
+};
+
+TriangleCorners triangle_corners(const Mesh& mesh, uint32_t prim) {
+    TriangleCorners corners;
+    const uvec3 tri = mesh.tris[prim];
+    for (int k = 0; k < 3; ++k) corners.pos[k] = mesh.positions[tri[k]];
+    corners.has_normals = !mesh.normal_tris.empty();
+    if (corners.has_normals) {
+        const uvec3 nt = mesh.normal_tris[prim];
+        for (int k = 0; k < 3; ++k) corners.nrm[k] = mesh.normals[nt[k]];
     }
-    const Ray r = to_object_space(object, ray);
-    vec3 p = r.org + hit.t * r.dir;
-    // uv only for a material that reads it (spheres and cylinders skip acos and atan2 otherwise)
+    corners.has_uvs = !mesh.uv_tris.empty();
+    if (corners.has_uvs) {
+        const uvec3 ut = mesh.uv_tris[prim];
+        for (int k = 0; k < 3; ++k) corners.tex[k] = mesh.uvs[ut[k]];
+    }
+    return corners;
+}
+
+/// The point at barycentrics (u, v, w = 1 - u - v), from them rather than o + t d (numerics.md
+/// §3), and the triangle's geometric normal.
+void triangle_surface(const TriangleCorners& corners, float u, float v, float w, vec3& position,
+                      vec3& geometric_normal) {
+    const vec3 a = corners.pos[0], b = corners.pos[1], c = corners.pos[2];
+    position = w * a + u * b + v * c;
+    geometric_normal = geometry_triangle(a, b, c, u, v).normal;
+}
+
+/// The interpolated vertex normal, or the geometric normal when the mesh has none or it has no
+/// usable length.
+vec3 shading_normal(const TriangleCorners& corners, float u, float v, float w,
+                    const vec3& geometric_normal) {
+    if (!corners.has_normals) return geometric_normal;
+    const vec3 n = w * corners.nrm[0] + u * corners.nrm[1] + v * corners.nrm[2];
+    const float len = glm::length(n);
+    return len > 0.0f && std::isfinite(len) ? n / len : geometric_normal;
+}
+
+/// The interpolated uv, or the barycentrics (u, v) when the mesh has no uvs.
+vec2 texture_uv(const TriangleCorners& corners, float u, float v, float w) {
+    if (!corners.has_uvs) return vec2(u, v);
+    return w * corners.tex[0] + u * corners.tex[1] + v * corners.tex[2];
+}
+
+/// An analytic shape's normal and uv at the object-space point p of the ray r (in object space),
+/// and p moved back onto the surface. uv only for a material that reads it (spheres and
+/// cylinders skip acos and atan2 otherwise).
+LocalGeometry analytic_geometry(const Scene& scene, const Object& object, const Ray& r, vec3& p) {
     const Material& m = scene.materials[object.material];
     const bool with_uv = m.texture >= 0 || m.normal_map >= 0;
     LocalGeometry g;
@@ -283,15 +314,42 @@ SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
         case ShapeKind::mesh:
             break;
     }
-    sp.uv = g.uv;
+    return g;
+}
+
+/// An object-space point and normal taken to the world.
+void to_world(const Object& object, const vec3& p, const vec3& n, vec3& position, vec3& normal) {
     if (object.has_transform) {
-        sp.position = vec3(object.world_from_object * glm::vec4(p, 1.0f));
+        position = vec3(object.world_from_object * glm::vec4(p, 1.0f));
         const glm::mat3 normal_matrix = glm::transpose(glm::mat3(object.object_from_world));
-        sp.geometric_normal = glm::normalize(normal_matrix * g.normal);
+        normal = glm::normalize(normal_matrix * n);
     } else {
-        sp.position = p;
-        sp.geometric_normal = g.normal;
+        position = p;
+        normal = n;
     }
+}
+
+}  // namespace
+
+SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
+    SurfacePoint sp;
+    const Object& object = scene.objects[hit.object];
+    sp.material = object.material;
+    // mesh
+    if (object.kind == ShapeKind::mesh) {
+        const TriangleCorners corners = triangle_corners(scene.meshes[object.shape], hit.prim);
+        const float u = hit.uv.x, v = hit.uv.y, w = 1.0f - u - v;
+        triangle_surface(corners, u, v, w, sp.position, sp.geometric_normal);
+        sp.shading_normal = shading_normal(corners, u, v, w, sp.geometric_normal);
+        sp.uv = texture_uv(corners, u, v, w);
+        return sp;
+    }
+    // analytic shapes
+    const Ray r = to_object_space(object, ray);
+    vec3 p = r.org + hit.t * r.dir;
+    const LocalGeometry g = analytic_geometry(scene, object, r, p);
+    sp.uv = g.uv;
+    to_world(object, p, g.normal, sp.position, sp.geometric_normal);
     sp.shading_normal = sp.geometric_normal;
     return sp;
 }

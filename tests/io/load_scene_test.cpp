@@ -547,8 +547,8 @@ TEST(LoadScene, FitsThenTransformsAndBakesMeshes) {
     expect_vec3_near(a.normals[0], vec3(0, 0, 1), 1e-7f);
 }
 
-// The last object that names a file takes the loaded mesh instead of a copy (load_scene.cpp,
-// read_mesh), counted by the resolved path: a file named two ways is one file.
+// The last object that names a file takes the loaded mesh instead of a copy (read_mesh in
+// load_scene_objects.cpp), counted by the resolved path: a file named two ways is one file.
 TEST(LoadScene, GivesEveryObjectOfAFileTheWholeMesh) {
     test::TempDir dir("raylane_load_scene_");
     test::write_file(dir.path / "quad.obj", quad_obj);

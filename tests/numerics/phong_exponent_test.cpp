@@ -1,6 +1,6 @@
 // Numerical stability suite, shading (numerics.md §11, checklist row 11): the Phong lobe around
 // the mirror direction and the Blinn-Phong half-vector lobe of shade/brdf_scalar.h and
-// brdf_packet.h at exponents 1e3 .. 1e6, the cases tests/shade/brdf_test.cpp leaves out:
+// brdf_packet.h at exponents 1e3 .. 1e6, the cases tests/shade/brdf_*_test.cpp leave out:
 // chi-square in lobe coordinates scaled by sqrt(e), the pdf's integral, finite weights at
 // extreme random numbers, the lobe near its peak, directional albedo, and a rendered glossy
 // sphere at e = 1e6 against the mirror. Every check also runs through the packet path.
