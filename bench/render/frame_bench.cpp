@@ -79,7 +79,7 @@ BENCHMARK(BM_Frame_PacketSah)
     ->UseRealTime();
 
 /// `--summary`: the frame's medians, the packet path's speed-up over the scalar path (scalar
-/// time / packet time), and the frame's target (< 40 ms on 2 threads).
+/// time / packet time), and the frame's target (< 30 ms on 2 threads).
 void print_summary(const bench::Measured& m, std::ostream& out) {
     auto ms = [&](const char* path, int threads) {
         return m.median_ms(std::string("BM_Frame_") + path + "/threads:" + std::to_string(threads) +
@@ -94,8 +94,8 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
             << bench::figure_text(ms("PacketSah", threads), "%.1f ms") << " | "
             << bench::ratio_text(ms("Scalar", threads), ms("Packet", threads)) << " |\n";
     const std::optional<double> frame = ms("Packet", 2);
-    out << "\nTarget:\n- dragon frame, packet path, 2 threads < 40 ms: "
-        << bench::verdict_below(frame, 40.0) << " (" << bench::figure_text(frame, "%.1f ms")
+    out << "\nTarget:\n- dragon frame, packet path, 2 threads < 30 ms: "
+        << bench::verdict_below(frame, 30.0) << " (" << bench::figure_text(frame, "%.1f ms")
         << ")\n";
 }
 
