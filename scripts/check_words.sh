@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Words: the repository describes the product, not its own development. Fails on a tracked text
-# file (docs, comments, program output, scripts) that names working sessions, issue numbers, a
-# tracker or the machine the code was written on; the history lives in git. An allowed use is
-# listed below as FILE:REGEX (a line of FILE matching REGEX is not reported).
+# file (docs, comments, program output, scripts) that narrates how the code came to be (numbered
+# work periods or tasks, where they were tracked) or the machine it was written on; the history
+# lives in git. An allowed use is listed below as FILE:REGEX (a line of FILE matching REGEX is
+# not reported).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
