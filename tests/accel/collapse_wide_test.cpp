@@ -155,10 +155,11 @@ TEST(CollapseWide, CheckerFindsBrokenTrees) {
     }
     {
         WideBvh bad = good;  // an unused slot with a box
-        bad.nodes.back().lo[1][wide_arity - 1] = 0.0f;
-        if (bad.nodes.back().children < wide_arity) {
-            EXPECT_NE(check_wide_bvh(bad, bvh), "");
-        }
+        auto with_room = std::find_if(bad.nodes.begin(), bad.nodes.end(),
+                                      [](const WideNode& w) { return w.children < wide_arity; });
+        ASSERT_NE(with_room, bad.nodes.end()) << "every node is full: no unused slot to break";
+        with_room->lo[1][wide_arity - 1] = 0.0f;
+        EXPECT_NE(check_wide_bvh(bad, bvh), "");
     }
 }
 
