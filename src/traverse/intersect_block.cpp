@@ -6,10 +6,12 @@
 #include "traverse/intersect_block.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "traverse/hit_update_packet.h"
 #include "traverse/intersect_packet.h"
+#include "traverse/intersect_wide_packet.h"
 #include "traverse/slab_packet.h"
 #include "traverse/triangle_packet.h"
 
@@ -31,6 +33,10 @@ struct BlockBounds {
     bool neg[3] = {false, false, false};
     vec3 mirrored_org_lo{-infinity}, mirrored_org_hi{infinity};
     vec3 mirrored_inv_lo{1.0f}, mirrored_inv_hi{1.0f};
+    /// A box holding every ray's segment from org + t_min dir to org + t_max dir, widened by a
+    /// margin far above rounding; infinite when a lane's t_max is (camera rays). A shadow block
+    /// towards a point light has one end point: the light.
+    vec3 segment_lo{-infinity}, segment_hi{infinity};
 };
 
 template <int W>
@@ -43,6 +49,8 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
     const vfloat<W> inf(infinity), neg_inf(-infinity);
     vfloat<W> t_min = inf, org_lo[3] = {inf, inf, inf}, org_hi[3] = {neg_inf, neg_inf, neg_inf};
     vfloat<W> dir_lo[3] = {inf, inf, inf}, dir_hi[3] = {neg_inf, neg_inf, neg_inf};
+    vfloat<W> t_max = neg_inf, end_lo[3] = {inf, inf, inf}, end_hi[3] = {neg_inf, neg_inf, neg_inf};
+    vfloat<W> start_lo[3] = {inf, inf, inf}, start_hi[3] = {neg_inf, neg_inf, neg_inf};
     BlockBounds b;
     // the block's direction signs: its first active lane's
     int first = 0;
@@ -59,6 +67,7 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
         auto lo = [&](vfloat<W>& acc, const vfloat<W>& x) { acc = select(m, min(x, acc), acc); };
         auto hi = [&](vfloat<W>& acc, const vfloat<W>& x) { acc = select(m, max(x, acc), acc); };
         lo(t_min, rays[p].t_min);
+        hi(t_max, rays[p].t_max);
         const vfloat<W>* org[3] = {&rays[p].org.x, &rays[p].org.y, &rays[p].org.z};
         const vfloat<W>* dir[3] = {&rays[p].dir.x, &rays[p].dir.y, &rays[p].dir.z};
         for (int k = 0; k < 3; ++k) {
@@ -66,9 +75,18 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
             hi(org_hi[k], *org[k]);
             lo(dir_lo[k], *dir[k]);
             hi(dir_hi[k], *dir[k]);
+            const vfloat<W> start = *org[k] + *dir[k] * rays[p].t_min;
+            const vfloat<W> end = *org[k] + *dir[k] * rays[p].t_max;
+            lo(start_lo[k], start);
+            hi(start_hi[k], start);
+            lo(end_lo[k], end);
+            hi(end_hi[k], end);
         }
     }
     b.t_min = hmin(t_min);
+    // no lane hits beyond the largest t_max (a NaN t_max hits nothing)
+    b.t_max = hmax(t_max);
+    const bool segments = std::isfinite(b.t_min) && std::isfinite(b.t_max);
     for (int k = 0; k < 3; ++k) {
         b.org_lo[k] = hmin(org_lo[k]);
         b.org_hi[k] = hmax(org_hi[k]);
@@ -86,6 +104,17 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
         const bool positive = d_lo > 0.0f && b.inv_lo[k] > 0.0f;
         const bool negative = d_hi < 0.0f && b.inv_hi[k] < 0.0f;
         b.usable[k] = finite && (positive || negative);
+        if (segments) {
+            // the margin: far above the rounding of the end points and of a hit point
+            const float seg_lo = std::min(hmin(start_lo[k]), hmin(end_lo[k]));
+            const float seg_hi = std::max(hmax(start_hi[k]), hmax(end_hi[k]));
+            const float margin =
+                1e-4f * (std::max(std::fabs(seg_lo), std::fabs(seg_hi)) + (seg_hi - seg_lo));
+            if (std::isfinite(margin)) {  // (else the lanes' end points are not all finite)
+                b.segment_lo[k] = seg_lo - margin;
+                b.segment_hi[k] = seg_hi + margin;
+            }
+        }
         if (b.usable[k]) {
             b.neg[k] = negative;
             b.mirrored_org_lo[k] = negative ? -b.org_hi[k] : b.org_lo[k];
@@ -103,19 +132,72 @@ BlockBounds make_block_bounds(const RayPacket<W>* rays, const vmask<W>* active, 
 /// rounding. In the mirrored space every reciprocal is positive, so the smallest entry distance
 /// is (lo - largest origin) times the smallest or largest reciprocal by its sign, and the largest
 /// exit distance likewise: the products of the four-corner bound that win, branch-free.
-bool block_may_hit(const BlockBounds& b, const BvhNode& node) {
+bool block_may_hit(const BlockBounds& b, const float lo_box[3], const float hi_box[3],
+                   float& t_enter) {
     float t0 = b.t_min, t1 = b.t_max;
+    for (int k = 0; k < 3; ++k)
+        if (!(lo_box[k] <= b.segment_hi[k] && hi_box[k] >= b.segment_lo[k])) return false;
     for (int k = 0; k < 3; ++k) {
-        const float lo = b.neg[k] ? -node.hi[k] : node.lo[k];
-        const float hi = b.neg[k] ? -node.lo[k] : node.hi[k];
+        const float lo = b.neg[k] ? -hi_box[k] : lo_box[k];
+        const float hi = b.neg[k] ? -lo_box[k] : hi_box[k];
         const float a = lo - b.mirrored_org_hi[k], c = hi - b.mirrored_org_lo[k];
         const float enter = a * (a < 0.0f ? b.mirrored_inv_hi[k] : b.mirrored_inv_lo[k]);
         const float exit = c * (c < 0.0f ? b.mirrored_inv_lo[k] : b.mirrored_inv_hi[k]);
         t0 = std::max(t0, enter);
         t1 = std::min(t1, exit);
     }
+    t_enter = t0;
     const float margin = 1e-4f * (std::fabs(t0) + std::fabs(t1 == infinity ? 0.0f : t1)) + 1e-30f;
     return t0 <= t1 + margin;
+}
+
+bool block_may_hit(const BlockBounds& b, const BvhNode& node) {
+    float t_enter;
+    return block_may_hit(b, node.lo, node.hi, t_enter);
+}
+
+/// Whether an entry bound of block_may_hit lies beyond t_max by more than its margin.
+bool beyond(float t_enter, float t_max) {
+    return t_max != infinity &&
+           t_enter > t_max + 1e-4f * (std::fabs(t_enter) + std::fabs(t_max)) + 1e-30f;
+}
+
+/// Slots a wide node's box test reads as one vector: all of them where the build has 8-wide
+/// vectors, two halves with 4-wide ones.
+inline constexpr int slot_width = native_width < wide_arity ? native_width : wide_arity;
+
+/// block_may_hit for every used slot of a wide node, slot_width slots at a time: bit s is set
+/// when the block may hit slot s, and t_enter[s] is then a lower bound of the entry distances
+/// of the block's rays. The arithmetic is block_may_hit's, slot by slot.
+uint32_t block_may_hit_slots(const BlockBounds& b, const WideNode& node,
+                             float t_enter[wide_arity]) {
+    constexpr int S = slot_width;
+    uint32_t entered = 0;
+    for (int base = 0; base < node.children; base += S) {
+        vfloat<S> t0(b.t_min), t1(b.t_max);
+        vmask<S> overlap = vfloat<S>(0.0f) == vfloat<S>(0.0f);
+        for (int k = 0; k < 3; ++k) {
+            const vfloat<S> node_lo = load<S>(node.lo[k] + base);
+            const vfloat<S> node_hi = load<S>(node.hi[k] + base);
+            overlap = mask_and(overlap, mask_and(node_lo <= vfloat<S>(b.segment_hi[k]),
+                                                 node_hi >= vfloat<S>(b.segment_lo[k])));
+            const vfloat<S> lo = b.neg[k] ? -node_hi : node_lo;
+            const vfloat<S> hi = b.neg[k] ? -node_lo : node_hi;
+            const vfloat<S> a = lo - vfloat<S>(b.mirrored_org_hi[k]);
+            const vfloat<S> c = hi - vfloat<S>(b.mirrored_org_lo[k]);
+            const vfloat<S> inv_lo(b.mirrored_inv_lo[k]), inv_hi(b.mirrored_inv_hi[k]);
+            const vmask<S> a_neg = a < vfloat<S>(0.0f), c_neg = c < vfloat<S>(0.0f);
+            const vfloat<S> enter = a * select(a_neg, inv_hi, inv_lo);
+            const vfloat<S> exit = c * select(c_neg, inv_lo, inv_hi);
+            t0 = max(enter, t0);  // std::max(t0, enter) and std::min(t1, exit), NaN included
+            t1 = min(exit, t1);
+        }
+        const vfloat<S> far = select(t1 == vfloat<S>(infinity), vfloat<S>(0.0f), t1);
+        const vfloat<S> margin = vfloat<S>(1e-4f) * (abs(t0) + abs(far)) + vfloat<S>(1e-30f);
+        store(t_enter + base, t0);
+        entered |= bits(mask_and(overlap, t0 <= t1 + margin)) << base;
+    }
+    return entered & ((1u << node.children) - 1u);
 }
 
 /// The box [lo, hi] under m, as a point (w = 1) or a direction (w = 0): the centre mapped and the
@@ -228,6 +310,66 @@ void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&&
     }
 }
 
+/// Ranged traversal of one mesh's wide tree by a block of `count` packets. At a wide node the
+/// block's bounds are tested against every slot at once (block_may_hit_slots); a slot they may
+/// hit goes on with the packets from the first to the last whose own test hits it, nearest
+/// slot (by the bounds' entry distance) first. test(p, node, s) is packet p's slab mask for
+/// slot s of `node`; leaf(node, s, first, last) tests packets [first, last] against the leaf
+/// in slot s and returns true when no lane of the block is left open (any hit: the block
+/// stops). A popped slot whose entry bound is beyond the block's t_max (lowered by the leaves)
+/// is skipped.
+template <int W, class Test, class Leaf>
+void traverse_block_wide(const WideBvh& wide, const BlockBounds& bounds, int count, Test&& test,
+                         Leaf&& leaf) {
+    struct Entry {
+        uint32_t node;
+        uint16_t slot;
+        uint16_t first, last;  // packets [first, last]
+        float t_enter;
+    };
+    Entry stack[wide_stack_size + 1];
+    int top = 0;
+    uint32_t node_index = 0;
+    uint16_t first = 0, last = static_cast<uint16_t>(count - 1);
+    for (;;) {
+        // an interior node: its slots that some packet of [first, last] enters, nearest first
+        const WideNode& node = wide.nodes[node_index];
+        float t_enter[wide_arity];
+        uint32_t bits = block_may_hit_slots(bounds, node, t_enter);
+        Entry entered[wide_arity];
+        int n = 0;
+        for (; bits != 0; bits &= bits - 1) {
+            const int s = std::countr_zero(bits);
+            int f = first;
+            while (f <= last && none(test(f, node, s))) ++f;
+            if (f > last) continue;
+            int l = last;
+            while (l > f && none(test(l, node, s))) --l;
+            const Entry e{node_index, static_cast<uint16_t>(s), static_cast<uint16_t>(f),
+                          static_cast<uint16_t>(l), t_enter[s]};
+            int at = n++;
+            for (; at > 0 && entered[at - 1].t_enter > e.t_enter; --at) entered[at] = entered[at - 1];
+            entered[at] = e;
+        }
+        for (int i = n - 1; i >= 0; --i) stack[top++] = entered[i];
+        // the next interior slot; the leaves on the way are tested
+        for (;;) {
+            if (top == 0) return;
+            const Entry e = stack[--top];
+            if (beyond(e.t_enter, bounds.t_max)) continue;
+            const WideNode& parent = wide.nodes[e.node];
+            if (parent.is_leaf(e.slot)) {
+                if (leaf(parent, e.slot, e.first, e.last)) return;
+                continue;
+            }
+            node_index = parent.child[e.slot];
+            first = e.first, last = e.last;
+            __builtin_prefetch(&wide.nodes[node_index]);
+            break;
+        }
+    }
+}
+
 }  // namespace
 
 template <int W>
@@ -268,6 +410,12 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
                               vec3(node.hi[0], node.hi[1], node.hi[2]), rays[p].t_min, limit[p],
                               t_near, active[p]);
     };
+    auto test_slot = [&](int p, const WideNode& node, int s) {
+        vfloat<W> t_near;
+        return intersect_slab(sr[p], vec3(node.lo[0][s], node.lo[1][s], node.lo[2][s]),
+                              vec3(node.hi[0][s], node.hi[1][s], node.hi[2][s]), rays[p].t_min,
+                              limit[p], t_near, active[p]);
+    };
     WatertightPacket<W> wr[max_block_rays / W];
     bool wr_ready[max_block_rays / W] = {};
     bool found = false;
@@ -288,19 +436,19 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
             }
             // a mesh: the same ranged traversal over its own BVH, for packets [f, l]
             const MeshAccel& mesh = accel.meshes[object.shape];
-            if (mesh.bvh.nodes.empty()) continue;
+            if (mesh.wide.nodes.empty()) continue;
             for (int p = f; p <= l; ++p) {
                 if (!wr_ready[p]) fill_watertight_ray(wr[p], rays[p], active[p]);
                 wr_ready[p] = true;
             }
-            traverse_block<W>(
-                mesh.bvh, bounds, l + 1 - f,
-                [&](int q, const BvhNode& node) { return test(f + q, node); },
-                [&](const BvhNode& leaf, int qf, int ql) {
+            traverse_block_wide<W>(
+                mesh.wide, bounds, l + 1 - f,
+                [&](int q, const WideNode& node, int s) { return test_slot(f + q, node, s); },
+                [&](const WideNode& node, int s, int qf, int ql) {
                     for (int p = f + qf; p <= f + ql; ++p) {
-                        const vmask<W> m = test(p, leaf);
+                        const vmask<W> m = test_slot(p, node, s);
                         if (none(m)) continue;
-                        for (uint32_t j = leaf.index; j < leaf.index + leaf.count; ++j) {
+                        for (uint32_t j = node.child[s]; j < node.child[s] + node.count[s]; ++j) {
                             const TriangleVerts& tv = mesh.verts[j];
                             vfloat<W> t(infinity), u(0.0f), v(0.0f);
                             const vmask<W> h = intersect_triangle(
@@ -316,6 +464,7 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
                     }
                     if (found) lower_t_max();
                     found = false;
+                    return false;
                 });
         }
     });
@@ -351,6 +500,12 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                               vec3(node.hi[0], node.hi[1], node.hi[2]), rays[p].t_min,
                               rays[p].t_max, t_near, open[p]);
     };
+    auto test_slot = [&](int p, const WideNode& node, int s) {
+        vfloat<W> t_near;
+        return intersect_slab(sr[p], vec3(node.lo[0][s], node.lo[1][s], node.lo[2][s]),
+                              vec3(node.hi[0][s], node.hi[1][s], node.hi[2][s]), rays[p].t_min,
+                              rays[p].t_max, t_near, open[p]);
+    };
     WatertightPacket<W> wr[max_block_rays / W];
     bool wr_ready[max_block_rays / W] = {};
     traverse_block<W>(accel.top, bounds, count, test, [&](const BvhNode& top_leaf, int f, int l) {
@@ -369,19 +524,21 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                 continue;
             }
             const MeshAccel& mesh = accel.meshes[object.shape];
-            if (mesh.bvh.nodes.empty()) continue;
+            if (mesh.wide.nodes.empty()) continue;
             for (int p = f; p <= l; ++p) {
                 if (!wr_ready[p]) fill_watertight_ray(wr[p], rays[p], active[p]);
                 wr_ready[p] = true;
             }
-            traverse_block<W>(
-                mesh.bvh, bounds, l + 1 - f,
-                [&](int q, const BvhNode& node) { return test(f + q, node); },
-                [&](const BvhNode& leaf, int qf, int ql) {
+            traverse_block_wide<W>(
+                mesh.wide, bounds, l + 1 - f,
+                [&](int q, const WideNode& node, int s) { return test_slot(f + q, node, s); },
+                [&](const WideNode& node, int s, int qf, int ql) {
+                    bool done = true;
                     for (int p = f + qf; p <= f + ql; ++p) {
                         // the open lanes that touch the leaf, less those each triangle occludes
-                        vmask<W> m = test(p, leaf);
-                        for (uint32_t j = leaf.index; j < leaf.index + leaf.count && any(m); ++j) {
+                        vmask<W> m = test_slot(p, node, s);
+                        const uint32_t end = node.child[s] + node.count[s];
+                        for (uint32_t j = node.child[s]; j < end && any(m); ++j) {
                             const TriangleVerts& tv = mesh.verts[j];
                             vfloat<W> t(infinity), u(0.0f), v(0.0f);
                             const vmask<W> h = intersect_triangle(
@@ -391,6 +548,8 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                         }
                         open[p] = mask_andnot(active[p], occluded[p]);
                     }
+                    for (int p = f; p <= l && done; ++p) done = none(open[p]);
+                    return done;
                 });
         }
     });
