@@ -81,6 +81,10 @@ Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& param
 /// 32 levels deep; the SAH build halves at the median from depth 31 on).
 inline constexpr int traversal_stack_size = 64;
 
+/// Entries of a wide tree's traversal stack: each of at most traversal_stack_size levels pushes
+/// at most wide_arity - 1 slots, and the last one wide_arity.
+inline constexpr int wide_stack_size = traversal_stack_size * (wide_arity - 1) + 1;
+
 /// Binned SAH (16 bins per axis, the cheapest split of the three axes; a node visit costs three
 /// primitive tests), a leaf when that is cheaper and the node holds at most max_leaf_size
 /// primitives. From depth 31 on it halves at the median, so the tree stays within

@@ -37,6 +37,13 @@ struct alignas(64) WideNode {
 };
 static_assert(sizeof(WideNode) == 256 && alignof(WideNode) == 64);
 
+/// Where a slot leads: a wide node (count 0, child its index) or a leaf's triangles child ..
+/// child + count - 1. The default is the root node.
+struct WideRef {
+    uint32_t child = 0;
+    uint32_t count = 0;
+};
+
 /// A flattened wide tree; node 0 is the root. Empty for an empty binary tree.
 struct WideBvh {
     std::vector<WideNode, OverwriteAllocator<WideNode>> nodes;

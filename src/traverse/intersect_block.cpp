@@ -11,7 +11,6 @@
 
 #include "traverse/hit_update_packet.h"
 #include "traverse/intersect_packet.h"
-#include "traverse/intersect_wide_packet.h"
 #include "traverse/slab_packet.h"
 #include "traverse/triangle_packet.h"
 
@@ -381,7 +380,7 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
         if (!block_may_hit_unbounded(scene, bounds, scene.objects[object])) continue;
         for (int p = 0; p < count; ++p)
             if (any(active[p]))
-                intersect_object_closest_from(scene, accel, object, rays[p], active[p], hits[p], 0);
+                intersect_object_closest_from(scene, accel, object, rays[p], active[p], hits[p]);
     }
     // the BVH: only when the block may meet its root box
     if (accel.top.nodes.empty() || !block_may_hit(bounds, accel.top.nodes[0])) return;
@@ -428,7 +427,7 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
                     const vmask<W> m = test(p, top_leaf);
                     if (any(m)) {
                         intersect_object_closest_from(scene, accel, object_index, rays[p], m,
-                                                      hits[p], 0);
+                                                      hits[p]);
                         limit[p] = t_limit(rays[p], hits[p]);
                     }
                 }
@@ -483,7 +482,7 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
             const vmask<W> lanes = mask_andnot(active[p], occluded[p]);
             if (any(lanes))
                 occluded[p] = mask_or(occluded[p], intersect_object_any_from(scene, accel, object,
-                                                                             rays[p], lanes, 0));
+                                                                             rays[p], lanes));
         }
     }
     // the BVH: only when the block may meet its root box
@@ -518,7 +517,7 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                     if (none(m)) continue;
                     occluded[p] = mask_or(
                         occluded[p],
-                        intersect_object_any_from(scene, accel, object_index, rays[p], m, 0));
+                        intersect_object_any_from(scene, accel, object_index, rays[p], m));
                     open[p] = mask_andnot(active[p], occluded[p]);
                 }
                 continue;

@@ -1,8 +1,8 @@
-// traverse: packet two-level BVH traversal (blocks of packets: intersect_block.cpp; streams:
-// intersect_stream.cpp). Mirrors intersect_scalar.cpp: the same steps, W
-// lanes at a time, each lane with its own active flag and interval, except that the mesh
-// traversals test both children of a node per step and order them by entry distance (see
-// intersect_mesh_closest); the answers are the same.
+// traverse: packet two-level traversal (blocks of packets: intersect_block.cpp; streams:
+// intersect_stream.cpp). Mirrors intersect_scalar.cpp: the same steps, W lanes at a time, each
+// lane with its own active flag and interval, except that a mesh is traversed by its wide tree
+// (accel/wide_bvh.h): every child box of a node per step, nearest first (see
+// intersect_mesh_closest). Both trees have the same leaves, so the answers are the same.
 #include "traverse/intersect_packet.h"
 
 #include <limits>
@@ -11,7 +11,6 @@
 #include "traverse/cylinder_packet.h"
 #include "traverse/hit_update_packet.h"
 #include "traverse/intersect_scalar.h"
-#include "traverse/intersect_wide_packet.h"
 #include "traverse/plane_packet.h"
 #include "traverse/slab_packet.h"
 #include "traverse/sphere_packet.h"
@@ -64,91 +63,68 @@ vfloat<W> intersect_analytic(const Scene& scene, const Object& object, const Ray
     return vfloat<W>(infinity);
 }
 
-/// The slab test (slab_packet.h) of W rays against both children of a node. Flattened so that
-/// both tests are inlined and their independent dependency chains interleave.
-template <int W>
-[[gnu::flatten]] inline void intersect_children(const SlabPacket<W>& sr, const BvhNode& first,
-                                                const BvhNode& second, const vfloat<W>& t_min,
-                                                const vfloat<W>& t_max, vfloat<W>& near_first,
-                                                vmask<W>& hit_first, vfloat<W>& near_second,
-                                                vmask<W>& hit_second, vmask<W> lanes) {
-    hit_first = intersect_slab(sr, vec3(first.lo[0], first.lo[1], first.lo[2]),
-                               vec3(first.hi[0], first.hi[1], first.hi[2]), t_min, t_max,
-                               near_first, lanes);
-    hit_second = intersect_slab(sr, vec3(second.lo[0], second.lo[1], second.lo[2]),
-                                vec3(second.hi[0], second.hi[1], second.hi[2]), t_min, t_max,
-                                near_second, lanes);
+/// Asks for a wide node's four cache lines.
+inline void prefetch_node(const WideNode* node) {
+    const char* p = reinterpret_cast<const char*>(node);
+    for (int line = 0; line < int(sizeof(WideNode)); line += 64) __builtin_prefetch(p + line);
 }
 
-/// Whether to visit a node's second child before its first when a packet touches both: when it
-/// is the nearer one (by entry distance) for more of the lanes that touch both; on a tie, when
-/// the first active lane's direction is negative along the split axis.
-template <int W>
-bool second_child_first(const BvhNode& node, const int* dir_neg, const vfloat<W>& near_first,
-                        vmask<W> hit_first, const vfloat<W>& near_second, vmask<W> hit_second) {
-    const vmask<W> both = mask_and(hit_first, hit_second);
-    const int second_nearer = count(mask_and(both, near_second < near_first));
-    const int first_nearer = count(mask_and(both, near_first < near_second));
-    if (second_nearer != first_nearer) return second_nearer > first_nearer;
-    return dir_neg[node.axis] != 0;
-}
-
-/// A node waiting on the closest-hit stack: the lanes whose slab test passed when it was pushed,
-/// with their entry distances (128 bytes at W = 16).
-template <int W>
-struct ClosestEntry {
-    vfloat<W> t_near;
-    vmask<W> lanes;
-    uint32_t node;
+/// A slot entered by some lanes: where it leads, those lanes (bits), and the smallest entry
+/// distance among them.
+struct WideEntry {
+    WideRef ref;
+    uint32_t lanes = 0;
+    float t_near = 0.0f;
 };
 
-// mesh: closest hit over one mesh's BVH. Unlike intersect_scalar.cpp, which tests one node per
-// step, both children of a node are tested at once and the one nearer for more lanes (by the
-// signs for coherent packets) is visited first; the other is pushed with its lanes' entry
-// distances. When popped, its lanes are those whose entry is still within the current limit: the
-// slab test's own answer (the exit distances are unchanged and the limit only shrinks), without
-// testing the box again. The order only decides how soon the limit shrinks; every node that may
-// hold a better hit for a lane is still visited by that lane, so the answers are the scalar
-// path's.
+/// The slots of `node` that lanes of `m` enter within [t_min, limit), nearest first (by the
+/// smallest entry distance of their lanes). Returns how many.
+template <int W>
+[[gnu::always_inline]] inline int enter_children(const WideNode& node, const SlabPacket<W>& sr,
+                                                 const vfloat<W>& t_min, const vfloat<W>& limit,
+                                                 vmask<W> m, WideEntry* entered) {
+    int n = 0;
+    for (int k = 0; k < node.children; ++k) {
+        vfloat<W> near;
+        const vmask<W> h = intersect_slab(sr, vec3(node.lo[0][k], node.lo[1][k], node.lo[2][k]),
+                                          vec3(node.hi[0][k], node.hi[1][k], node.hi[2][k]), t_min,
+                                          limit, near, m);
+        if (none(h)) continue;
+        // insertion by entry distance: a node has at most wide_arity slots
+        const WideEntry e{{node.child[k], node.count[k]}, bits(h), hmin(near, h)};
+        int at = n++;
+        for (; at > 0 && entered[at - 1].t_near > e.t_near; --at) entered[at] = entered[at - 1];
+        entered[at] = e;
+    }
+    return n;
+}
+
+// mesh: closest hit over one mesh's wide tree (the scalar twin walks the binary tree; both have
+// the same leaves), from slot `start` on without testing its box (the root by default: the
+// caller knows the lanes reach it). At each wide node every child box is tested;
+// the nearest child entered goes on, the others are pushed farthest first with their lanes and
+// their nearest entry distance. When popped, a slot goes on with its lanes if that distance is
+// still within a lane's limit (the limits only shrink), without testing the box again; a lane
+// that entered farther is culled by the next box or triangle test. Every slot that may hold a
+// better hit for a lane is visited by that lane, and hits are ordered by (t, object,
+// primitive), so the answers are the scalar path's.
 template <int W>
 void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPacket<W>& rays,
                             vmask<W> active, HitPacket<W>& hit, vint<W>* nodes_visited,
-                            uint32_t start) {
-    if (mesh.bvh.nodes.empty()) return;
+                            WideRef start) {
+    if (mesh.wide.nodes.empty() || none(active)) return;
     const WatertightPacket<W> wr = make_watertight_ray(rays, active);
     const SlabPacket<W> sr = make_slab_ray(rays);
-    const int lane = first_active(active);
-    const int dir_neg[3] = {get(rays.dir.x, lane) < 0.0f, get(rays.dir.y, lane) < 0.0f,
-                            get(rays.dir.z, lane) < 0.0f};
-    // coherent: every active lane has the first one's direction signs, so the order by signs is
-    // the near-first order of every lane and the entry distances need not be compared
-    const uint32_t act = bits(active);
-    auto same_sign = [act](const vfloat<W>& d) {
-        const uint32_t neg = bits(d < vfloat<W>(0.0f)) & act;
-        return neg == 0 || neg == act;
-    };
-    const bool coherent = same_sign(rays.dir.x) && same_sign(rays.dir.y) && same_sign(rays.dir.z);
-    const BvhNode* nodes = mesh.bvh.nodes.data();
-    auto count_tests = [&](int n) {
-        if (nodes_visited)
-            *nodes_visited = select(active, *nodes_visited + vint<W>(n), *nodes_visited);
-    };
+    const WideNode* nodes = mesh.wide.nodes.data();
     vfloat<W> limit = t_limit(rays, hit);
-    count_tests(1);
-    vfloat<W> t_root;
-    const vec3 root_lo(nodes[0].lo[0], nodes[0].lo[1], nodes[0].lo[2]);
-    const vec3 root_hi(nodes[0].hi[0], nodes[0].hi[1], nodes[0].hi[2]);
-    vmask<W> m = start != 0
-                     ? active
-                     : intersect_slab(sr, root_lo, root_hi, rays.t_min, limit, t_root, active);
-    ClosestEntry<W> stack[traversal_stack_size];
+    WideEntry stack[wide_stack_size];
     int top = 0;
-    uint32_t node_index = start;
-    while (any(m)) {  // m: the lanes that touch node_index's box
-        const BvhNode& node = nodes[node_index];
-        if (node.is_leaf()) {
+    WideRef ref = start;
+    vmask<W> m = active;
+    for (;;) {
+        if (ref.count > 0) {
             // leaf
-            for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+            for (uint32_t k = ref.child; k < ref.child + ref.count; ++k) {
                 const TriangleVerts& tv = mesh.verts[k];
                 vfloat<W> t(infinity), u(0.0f), v(0.0f);
                 const vmask<W> h =
@@ -161,84 +137,52 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPac
                 }
             }
         } else {
-            // children: nearer first, the other pushed
-            const uint32_t first = node_index + 1, second = node.index;
-            vfloat<W> near_first, near_second;
-            vmask<W> hit_first, hit_second;
-            count_tests(2);
-            intersect_children(sr, nodes[first], nodes[second], rays.t_min, limit, near_first,
-                               hit_first, near_second, hit_second, m);
-            const bool any_first = any(hit_first), any_second = any(hit_second);
-            // the next step tests the children of whichever child goes on: ask for their boxes
-            // now (the second child of a child is far away in the depth-first order)
-            if (any_first && !nodes[first].is_leaf())
-                __builtin_prefetch(&nodes[nodes[first].index]);
-            if (any_second && !nodes[second].is_leaf())
-                __builtin_prefetch(&nodes[nodes[second].index]);
-            if (any_first && any_second) {
-                const bool second_first =
-                    coherent ? dir_neg[node.axis] != 0
-                             : second_child_first<W>(node, dir_neg, near_first, hit_first,
-                                                     near_second, hit_second);
-                if (second_first) {
-                    stack[top++] = {near_first, hit_first, first};
-                    node_index = second;
-                    m = hit_second;
-                } else {
-                    stack[top++] = {near_second, hit_second, second};
-                    node_index = first;
-                    m = hit_first;
-                }
-                continue;
-            }
-            if (any_first || any_second) {
-                node_index = any_first ? first : second;
-                m = any_first ? hit_first : hit_second;
+            // children: the nearest goes on, the others pushed, farthest first
+            const WideNode& node = nodes[ref.child];
+            if (nodes_visited)
+                *nodes_visited =
+                    select(active, *nodes_visited + vint<W>(node.children), *nodes_visited);
+            WideEntry entered[wide_arity];
+            const int n = enter_children(node, sr, rays.t_min, limit, m, entered);
+            for (int i = 0; i < n && i < 2; ++i)  // the next nodes' boxes: four cache lines each
+                if (entered[i].ref.count == 0) prefetch_node(nodes + entered[i].ref.child);
+            if (n > 0) {
+                for (int i = n - 1; i > 0; --i) stack[top++] = entered[i];
+                ref = entered[0].ref;
+                m = mask_from_bits<W>(entered[0].lanes);
                 continue;
             }
         }
-        // pop the next node that a lane still reaches within its limit
+        // pop the next slot that a lane may still reach within its limit
         m = mask_and(active, mask_not(active));
         while (top > 0 && none(m)) {
-            const ClosestEntry<W>& e = stack[--top];
-            m = mask_and(e.lanes, e.t_near <= limit);
-            node_index = e.node;
+            const WideEntry& e = stack[--top];
+            m = mask_and(mask_from_bits<W>(e.lanes), vfloat<W>(e.t_near) <= limit);
+            ref = e.ref;
         }
+        if (none(m)) return;
     }
 }
 
-// mesh: any hit. Both children of a node are tested at once, the one nearer along the split axis
-// for the first active lane is visited first, the other pushed with its lanes (as bits); t_max
-// does not change, so when popped its lanes are those that have not found a hit yet.
+// mesh: any hit over one mesh's wide tree, from slot `start` on. The children entered are
+// visited nearest first;
+// t_max does not change, so a popped slot's lanes are those that have not found a hit yet.
 template <int W>
 vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vmask<W> active,
-                            uint32_t start) {
+                            WideRef start) {
     vmask<W> found = mask_and(active, mask_not(active));
-    if (mesh.bvh.nodes.empty()) return found;
+    if (mesh.wide.nodes.empty() || none(active)) return found;
     const WatertightPacket<W> wr = make_watertight_ray(rays, active);
     const SlabPacket<W> sr = make_slab_ray(rays);
-    const int lane = first_active(active);
-    const int dir_neg[3] = {get(rays.dir.x, lane) < 0.0f, get(rays.dir.y, lane) < 0.0f,
-                            get(rays.dir.z, lane) < 0.0f};
-    const BvhNode* nodes = mesh.bvh.nodes.data();
-    vfloat<W> t_root;
-    const vec3 root_lo(nodes[0].lo[0], nodes[0].lo[1], nodes[0].lo[2]);
-    const vec3 root_hi(nodes[0].hi[0], nodes[0].hi[1], nodes[0].hi[2]);
-    vmask<W> m = start != 0
-                     ? active
-                     : intersect_slab(sr, root_lo, root_hi, rays.t_min, rays.t_max, t_root, active);
-    struct Entry {
-        uint32_t node;
-        uint32_t lanes;
-    };
-    Entry stack[traversal_stack_size];
+    const WideNode* nodes = mesh.wide.nodes.data();
+    WideEntry stack[wide_stack_size];
     int top = 0;
-    uint32_t node_index = start;
-    while (any(m)) {  // m: the lanes that touch node_index's box and have not found a hit
-        const BvhNode& node = nodes[node_index];
-        if (node.is_leaf()) {
+    WideRef ref = start;
+    vmask<W> m = active;
+    for (;;) {
+        if (ref.count > 0) {
             // leaf
-            for (uint32_t k = node.index; k < node.index + node.count; ++k) {
+            for (uint32_t k = ref.child; k < ref.child + ref.count; ++k) {
                 const vmask<W> lanes = mask_andnot(m, found);
                 if (none(lanes)) break;
                 const TriangleVerts& tv = mesh.verts[k];
@@ -248,55 +192,37 @@ vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vma
             }
             if (none(mask_andnot(active, found))) return found;
         } else {
-            // children: nearer first, the other pushed
-            const uint32_t first = node_index + 1, second = node.index;
-            vfloat<W> near_first, near_second;
-            vmask<W> hit_first, hit_second;
-            intersect_children(sr, nodes[first], nodes[second], rays.t_min, rays.t_max, near_first,
-                               hit_first, near_second, hit_second, m);
-            const bool any_first = any(hit_first), any_second = any(hit_second);
-            if (any_first && any_second) {
-                if (dir_neg[node.axis]) {
-                    stack[top++] = {first, bits(hit_first)};
-                    node_index = second;
-                    m = hit_second;
-                } else {
-                    stack[top++] = {second, bits(hit_second)};
-                    node_index = first;
-                    m = hit_first;
-                }
-                continue;
-            }
-            if (any_first || any_second) {
-                node_index = any_first ? first : second;
-                m = any_first ? hit_first : hit_second;
+            // children: the nearest goes on, the others pushed, farthest first
+            WideEntry entered[wide_arity];
+            const int n = enter_children(nodes[ref.child], sr, rays.t_min, rays.t_max, m, entered);
+            for (int i = 0; i < n && i < 2; ++i)
+                if (entered[i].ref.count == 0) prefetch_node(nodes + entered[i].ref.child);
+            if (n > 0) {
+                for (int i = n - 1; i > 0; --i) stack[top++] = entered[i];
+                ref = entered[0].ref;
+                m = mask_andnot(mask_from_bits<W>(entered[0].lanes), found);
                 continue;
             }
         }
-        // pop the next node that an open lane still touches
+        // pop the next slot that an open lane still enters
         m = mask_and(active, mask_not(active));
         while (top > 0 && none(m)) {
-            const Entry& e = stack[--top];
+            const WideEntry& e = stack[--top];
             m = mask_andnot(mask_from_bits<W>(e.lanes), found);
-            node_index = e.node;
+            ref = e.ref;
         }
+        if (none(m)) return found;
     }
-    return found;
 }
 
 template <int W>
 void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t object_index,
                               const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
-                              vint<W>* nodes_visited, uint32_t start = 0) {
+                              vint<W>* nodes_visited, WideRef start = {}) {
     const Object& object = scene.objects[object_index];
     if (object.kind == ShapeKind::mesh) {
-        // from the root: the wide tree; from a node of the binary tree (blocks, streams): that
-        if (start == 0)
-            intersect_mesh_closest_wide(accel.meshes[object.shape], object_index, rays, active, hit,
-                                        nodes_visited);
-        else
-            intersect_mesh_closest(accel.meshes[object.shape], object_index, rays, active, hit,
-                                   nodes_visited, start);
+        intersect_mesh_closest(accel.meshes[object.shape], object_index, rays, active, hit,
+                               nodes_visited, start);
         return;
     }
     RayPacket<W> r = to_object_space(object, rays);
@@ -309,12 +235,11 @@ void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t o
 
 template <int W>
 vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t object_index,
-                              const RayPacket<W>& rays, vmask<W> active, uint32_t start = 0) {
+                              const RayPacket<W>& rays, vmask<W> active, WideRef start = {}) {
     const Object& object = scene.objects[object_index];
     if (!object.casts_shadows) return vmask<W>(false);
     if (object.kind == ShapeKind::mesh)
-        return start == 0 ? intersect_mesh_any_wide(accel.meshes[object.shape], rays, active)
-                          : intersect_mesh_any(accel.meshes[object.shape], rays, active, start);
+        return intersect_mesh_any(accel.meshes[object.shape], rays, active, start);
     const vfloat<W> t = intersect_analytic(scene, object, to_object_space(object, rays), active);
     return mask_and(active, t < rays.t_max);
 }
@@ -324,14 +249,14 @@ vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t o
 template <int W>
 void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
-                                   uint32_t start) {
+                                   WideRef start) {
     intersect_object_closest(scene, accel, object, rays, active, hit,
                              static_cast<vint<W>*>(nullptr), start);
 }
 
 template <int W>
 vmask<W> intersect_object_any_from(const Scene& scene, const Accel& accel, uint32_t object,
-                                   const RayPacket<W>& rays, vmask<W> active, uint32_t start) {
+                                   const RayPacket<W>& rays, vmask<W> active, WideRef start) {
     return intersect_object_any(scene, accel, object, rays, active, start);
 }
 
@@ -714,9 +639,9 @@ template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const Ray
 template vmask<1> intersect_any<1>(const Scene&, const Accel&, const RayPacket<1>&, vmask<1>);
 template void intersect_object_closest_from<1>(const Scene&, const Accel&, uint32_t,
                                                const RayPacket<1>&, vmask<1>, HitPacket<1>&,
-                                               uint32_t);
+                                               WideRef);
 template vmask<1> intersect_object_any_from<1>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<1>&, vmask<1>, uint32_t);
+                                               const RayPacket<1>&, vmask<1>, WideRef);
 template SurfacePacket<1> surface_at<1>(const Scene&, const RayPacket<1>&, const HitPacket<1>&,
                                         vmask<1>);
 #if XSIMD_WITH_SSE2
@@ -725,9 +650,9 @@ template HitPacket<4> intersect_closest<4>(const Scene&, const Accel&, const Ray
 template vmask<4> intersect_any<4>(const Scene&, const Accel&, const RayPacket<4>&, vmask<4>);
 template void intersect_object_closest_from<4>(const Scene&, const Accel&, uint32_t,
                                                const RayPacket<4>&, vmask<4>, HitPacket<4>&,
-                                               uint32_t);
+                                               WideRef);
 template vmask<4> intersect_object_any_from<4>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<4>&, vmask<4>, uint32_t);
+                                               const RayPacket<4>&, vmask<4>, WideRef);
 template SurfacePacket<4> surface_at<4>(const Scene&, const RayPacket<4>&, const HitPacket<4>&,
                                         vmask<4>);
 #endif
@@ -737,9 +662,9 @@ template HitPacket<8> intersect_closest<8>(const Scene&, const Accel&, const Ray
 template vmask<8> intersect_any<8>(const Scene&, const Accel&, const RayPacket<8>&, vmask<8>);
 template void intersect_object_closest_from<8>(const Scene&, const Accel&, uint32_t,
                                                const RayPacket<8>&, vmask<8>, HitPacket<8>&,
-                                               uint32_t);
+                                               WideRef);
 template vmask<8> intersect_object_any_from<8>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<8>&, vmask<8>, uint32_t);
+                                               const RayPacket<8>&, vmask<8>, WideRef);
 template SurfacePacket<8> surface_at<8>(const Scene&, const RayPacket<8>&, const HitPacket<8>&,
                                         vmask<8>);
 #endif
@@ -749,9 +674,9 @@ template HitPacket<16> intersect_closest<16>(const Scene&, const Accel&, const R
 template vmask<16> intersect_any<16>(const Scene&, const Accel&, const RayPacket<16>&, vmask<16>);
 template void intersect_object_closest_from<16>(const Scene&, const Accel&, uint32_t,
                                                 const RayPacket<16>&, vmask<16>, HitPacket<16>&,
-                                                uint32_t);
+                                                WideRef);
 template vmask<16> intersect_object_any_from<16>(const Scene&, const Accel&, uint32_t,
-                                                 const RayPacket<16>&, vmask<16>, uint32_t);
+                                                 const RayPacket<16>&, vmask<16>, WideRef);
 template SurfacePacket<16> surface_at<16>(const Scene&, const RayPacket<16>&, const HitPacket<16>&,
                                           vmask<16>);
 #endif

@@ -22,19 +22,19 @@ vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W
                        vmask<W> active);
 
 /// One object's part of intersect_closest: improves `hit` for the active lanes with the same
-/// tie-break. A mesh's traversal starts at node `start` of its BVH without testing that node's
-/// box (0: the root, whose box is tested): the caller knows the lanes reach it, or reached it
+/// tie-break. A mesh's traversal starts at slot `start` of its wide tree without testing that
+/// slot's box (the default: the root node): the caller knows the lanes reach it, or reached it
 /// under a larger limit, which only costs tests. For the block and stream traversals.
 template <int W>
 void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
-                                   uint32_t start);
+                                   WideRef start = {});
 
 /// One object's part of intersect_any: the active lanes it occludes (none when it casts no
-/// shadows). A mesh from node `start` of its BVH, as intersect_object_closest_from.
+/// shadows). A mesh from slot `start` of its wide tree, as intersect_object_closest_from.
 template <int W>
 vmask<W> intersect_object_any_from(const Scene& scene, const Accel& accel, uint32_t object,
-                                   const RayPacket<W>& rays, vmask<W> active, uint32_t start);
+                                   const RayPacket<W>& rays, vmask<W> active, WideRef start = {});
 
 /// Everything shading needs about W hits, in world space (the twin of SurfacePoint).
 template <int W>

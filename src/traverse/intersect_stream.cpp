@@ -57,13 +57,16 @@ struct Stream {
     AlignedArray<int32_t> ids;
     void reserve(size_t rays) {
         slab.reserve(rays), hit.reserve(rays), u.reserve(rays), v.reserve(rays);
-        // the lists: the first one, then per level of the top-level tree and of a mesh's tree
-        // (each at most traversal_stack_size deep) at most two lists as long as their parent's, and
-        // the mesh root's (traverse_stream)
+        // the lists: the first one and the root's; per level of the top-level tree (at most
+        // traversal_stack_size deep) at most two lists as long as their parent's; per level of
+        // a mesh's wide tree (as deep) at most wide_arity, and room for one node's split
+        // (traverse_stream_wide). Memory that is not written is not touched.
         ids.reserve(ids_needed(rays));
         ids_end = ids.data + ids_needed(rays);
     }
-    static size_t ids_needed(size_t rays) { return rays * (4 * traversal_stack_size + 3) + 64; }
+    static size_t ids_needed(size_t rays) {
+        return rays * (2 * traversal_stack_size + wide_arity * (traversal_stack_size + 1) + 2) + 64;
+    }
     const int32_t* ids_end = nullptr;  ///< end of the room the lists of this stream may use
 };
 
@@ -127,15 +130,14 @@ void scatter_hits(Stream& s, const vint<W>& idx, vmask<W> won, const RayPacket<W
     });
 }
 
-/// The stream traversal of one BVH by the rays of `list` (n of them), with free room for lists
-/// from `free_ids` on. The root's box is tested first. leaf(node, list, n, free) gets the rays
-/// that touch a leaf; small(node, list, n) may take over a list of at most W rays (true) or
-/// leave it to the stream (false). At an interior node the list is split into the rays that
-/// touch each child; the child that more rays enter first goes first, the other waits on the
-/// stack with its list. A ray whose limit has dropped since falls out at the next test.
-template <int W, class Leaf, class Small>
+/// The stream traversal of the top-level tree (binary) by the rays of `list` (n of them), with
+/// free room for lists from `free_ids` on. The root's box is tested first. leaf(node, list, n,
+/// free) gets the rays that touch a leaf. At an interior node the list is split into the rays
+/// that touch each child; the child that more rays enter first goes first, the other waits on
+/// the stack with its list. A ray whose limit has dropped since falls out at the next test.
+template <int W, class Leaf>
 void traverse_stream(const Bvh& bvh, const Stream& s, const int32_t* list, int n, int32_t* free_ids,
-                     Leaf&& leaf, Small&& small) {
+                     Leaf&& leaf) {
     if (bvh.nodes.empty() || n == 0) return;
     const BvhNode* nodes = bvh.nodes.data();
     auto box = [](const BvhNode& node, vec3& lo, vec3& hi) {
@@ -173,7 +175,7 @@ void traverse_stream(const Bvh& bvh, const Stream& s, const int32_t* list, int n
         const BvhNode& node = nodes[e.node];
         if (node.is_leaf()) {
             leaf(node, e.list, e.n, free_top);
-        } else if (!(e.n <= W && small(e.node, e.list, e.n))) {
+        } else {
             // children: split the list
             const uint32_t first = e.node + 1, second = node.index;
             vec3 lo1, hi1, lo2, hi2;
@@ -225,6 +227,83 @@ void traverse_stream(const Bvh& bvh, const Stream& s, const int32_t* list, int n
     }
 }
 
+/// The stream traversal of one mesh's wide tree by the rays of `list` (n of them, all of
+/// which reach its root node), with free room for lists from `free_ids` on. At a wide node the
+/// list is split into the rays that enter each slot (a ray may enter several): first into
+/// regions of n each past the room the lists need, then moved below them in the order they
+/// will be popped, so that the lists above a popped one always belong to finished slots. The
+/// slot whose rays enter nearest on average goes first. leaf(ref, list, n) gets the rays of a
+/// leaf slot; a list of at most W rays goes on as one packet: small(ref, list, n).
+template <int W, class Leaf, class Small>
+void traverse_stream_wide(const WideBvh& wide, const Stream& s, const int32_t* list, int n,
+                          int32_t* free_ids, Leaf&& leaf, Small&& small) {
+    if (wide.nodes.empty() || n == 0) return;
+    struct Entry {
+        WideRef ref;
+        int n;
+        const int32_t* list;
+    };
+    Entry stack[wide_stack_size];
+    int top = 0;
+    Entry e{WideRef{}, n, list};
+    int32_t* free_top = free_ids;
+    for (;;) {
+        if (e.ref.count > 0) {
+            leaf(e.ref, e.list, e.n);
+        } else if (e.n <= W) {
+            small(e.ref, e.list, e.n);
+        } else {
+            // the slots' lists, each in a region of e.n past the room the lists need
+            const WideNode& node = wide.nodes[e.ref.child];
+            const int slots = node.children;
+            int32_t* region = free_top + slots * e.n;
+            assert(region + slots * e.n <= s.ids_end);
+            int count_of[wide_arity] = {};
+            float near_sum[wide_arity] = {};
+            for (int j = 0; j < e.n; j += W) {
+                vint<W> idx;
+                vmask<W> lanes;
+                load_batch<W>(e.list, e.n, j, idx, lanes);
+                SlabPacket<W> sr;
+                vfloat<W> t_min, limit;
+                gather_slab<W>(s, idx, sr, t_min, limit);
+                for (int k = 0; k < slots; ++k) {
+                    vfloat<W> near;
+                    const vmask<W> h = intersect_slab(
+                        sr, vec3(node.lo[0][k], node.lo[1][k], node.lo[2][k]),
+                        vec3(node.hi[0][k], node.hi[1][k], node.hi[2][k]), t_min, limit, near,
+                        lanes);
+                    count_of[k] += compress_store(region + k * e.n + count_of[k], idx, h);
+                    near_sum[k] += hsum(select(h, near, vfloat<W>(0.0f)));
+                }
+            }
+            // the slots entered, nearest (by mean entry distance) first
+            int order[wide_arity], entered = 0;
+            float mean[wide_arity];
+            for (int k = 0; k < slots; ++k) {
+                if (count_of[k] == 0) continue;
+                mean[k] = near_sum[k] / float(count_of[k]);
+                int at = entered++;
+                for (; at > 0 && mean[order[at - 1]] > mean[k]; --at) order[at] = order[at - 1];
+                order[at] = k;
+            }
+            // the lists below the regions, farthest first: the nearest is on top
+            int32_t* out = free_top;
+            for (int i = entered - 1; i >= 0; --i) {
+                const int k = order[i];
+                std::memcpy(out, region + k * e.n, sizeof(int32_t) * size_t(count_of[k]));
+                stack[top++] = {{node.child[k], node.count[k]}, count_of[k], out};
+                out += count_of[k];
+            }
+        }
+        if (top == 0) break;
+        // the lists above the popped one (in the free room, as every pushed list) belong to
+        // finished slots
+        e = stack[--top];
+        free_top = free_ids + (e.list + e.n - free_ids);
+    }
+}
+
 /// Fills the stream from the packets and writes the active lanes' ray numbers to `list` (the
 /// inactive lanes' records are filled too, with a limit of -infinity, but never listed);
 /// returns how many there are.
@@ -268,7 +347,7 @@ int fill_stream(Stream& s, const RayPacket<W>* rays, const vmask<W>* active,
 
 /// A mesh's leaf for the rays of a list, W at a time.
 template <int W>
-void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, const BvhNode& leaf,
+void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, WideRef leaf,
                  const int32_t* list, int n) {
     for (int j = 0; j < n; j += W) {
         vint<W> idx;
@@ -281,7 +360,7 @@ void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, const BvhNod
         const WatertightPacket<W> wr = make_watertight_ray(r, lanes);
         vfloat<W> limit = t_limit(r, h);
         vmask<W> won = mask_and(lanes, mask_not(lanes));
-        for (uint32_t k = leaf.index; k < leaf.index + leaf.count; ++k) {
+        for (uint32_t k = leaf.child; k < leaf.child + leaf.count; ++k) {
             const TriangleVerts& tv = mesh.verts[k];
             vfloat<W> t(infinity), u(0.0f), v(0.0f);
             const vmask<W> hit =
@@ -299,10 +378,10 @@ void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, const BvhNod
 }
 
 /// Any object for the rays of a list, W at a time, through intersect_object_closest_from (a
-/// mesh from node `start`, which the rays were listed for, or from its root).
+/// mesh from slot `start` of its wide tree, which the rays were listed for, or from its root).
 template <int W>
 void stream_object(Stream& s, const Scene& scene, const Accel& accel, uint32_t object,
-                   const int32_t* list, int n, uint32_t start) {
+                   const int32_t* list, int n, WideRef start) {
     for (int j = 0; j < n; j += W) {
         vint<W> idx;
         vmask<W> lanes;
@@ -333,7 +412,7 @@ void mark_occluded(Stream& s, const vint<W>& idx, vmask<W> found) {
 
 /// The any-hit leaf: the open rays of a list against a mesh leaf's triangles, W at a time.
 template <int W>
-void stream_leaf_any(Stream& s, const MeshAccel& mesh, const BvhNode& leaf, const int32_t* list,
+void stream_leaf_any(Stream& s, const MeshAccel& mesh, WideRef leaf, const int32_t* list,
                      int n) {
     for (int j = 0; j < n; j += W) {
         vint<W> idx;
@@ -346,7 +425,7 @@ void stream_leaf_any(Stream& s, const MeshAccel& mesh, const BvhNode& leaf, cons
         if (none(open)) continue;
         const WatertightPacket<W> wr = make_watertight_ray(r, open);
         vmask<W> found = mask_and(open, mask_not(open));
-        for (uint32_t k = leaf.index; k < leaf.index + leaf.count; ++k) {
+        for (uint32_t k = leaf.child; k < leaf.child + leaf.count; ++k) {
             const vmask<W> m = mask_andnot(open, found);
             if (none(m)) break;
             const TriangleVerts& tv = mesh.verts[k];
@@ -358,10 +437,10 @@ void stream_leaf_any(Stream& s, const MeshAccel& mesh, const BvhNode& leaf, cons
     }
 }
 
-/// Any object for the open rays of a list, W at a time (a mesh from node `start`).
+/// Any object for the open rays of a list, W at a time (a mesh from slot `start`).
 template <int W>
 void stream_object_any(Stream& s, const Scene& scene, const Accel& accel, uint32_t object,
-                       const int32_t* list, int n, uint32_t start) {
+                       const int32_t* list, int n, WideRef start) {
     for (int j = 0; j < n; j += W) {
         vint<W> idx;
         vmask<W> lanes;
@@ -380,7 +459,6 @@ void stream_object_any(Stream& s, const Scene& scene, const Accel& accel, uint32
 /// (a mesh by its own BVH), closest hits or occlusion (`any_hit`: shadow casters only).
 template <bool any_hit, int W>
 void traverse_scene(Stream& s, const Scene& scene, const Accel& accel, int32_t* list, int n) {
-    auto never = [](uint32_t, const int32_t*, int) { return false; };
     traverse_stream<W>(
         accel.top, s, list, n, list + n,
         [&](const BvhNode& top_leaf, const int32_t* tl, int tn, int32_t* free_ids) {
@@ -388,33 +466,29 @@ void traverse_scene(Stream& s, const Scene& scene, const Accel& accel, int32_t* 
                 const uint32_t object = accel.top.prim_ids[k];
                 const Object& o = scene.objects[object];
                 if (any_hit && !o.casts_shadows) continue;
-                // the object for a list of rays, a mesh from node `start`
-                auto whole = [&](const int32_t* ll, int ln, uint32_t start) {
+                // the object for a list of rays, a mesh from slot `start`
+                auto whole = [&](const int32_t* ll, int ln, WideRef start) {
                     if constexpr (any_hit)
                         stream_object_any<W>(s, scene, accel, object, ll, ln, start);
                     else
                         stream_object<W>(s, scene, accel, object, ll, ln, start);
                 };
                 if (o.kind != ShapeKind::mesh) {
-                    whole(tl, tn, 0);
+                    whole(tl, tn, WideRef{});
                     continue;
                 }
                 const MeshAccel& mesh = accel.meshes[o.shape];
-                traverse_stream<W>(
-                    mesh.bvh, s, tl, tn, free_ids,
-                    [&](const BvhNode& leaf, const int32_t* ll, int ln, int32_t*) {
+                traverse_stream_wide<W>(
+                    mesh.wide, s, tl, tn, free_ids,
+                    [&](WideRef leaf, const int32_t* ll, int ln) {
                         if constexpr (any_hit)
                             stream_leaf_any<W>(s, mesh, leaf, ll, ln);
                         else
                             stream_leaf<W>(s, mesh, object, leaf, ll, ln);
                     },
-                    [&](uint32_t node, const int32_t* ll, int ln) {
-                        whole(ll, ln, node);
-                        return true;
-                    });
+                    [&](WideRef start, const int32_t* ll, int ln) { whole(ll, ln, start); });
             }
-        },
-        never);
+        });
 }
 
 }  // namespace
@@ -428,7 +502,7 @@ void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayP
     for (uint32_t object : accel.unbounded)
         for (int p = 0; p < count; ++p)
             if (any(active[p]))
-                intersect_object_closest_from(scene, accel, object, rays[p], active[p], hits[p], 0);
+                intersect_object_closest_from(scene, accel, object, rays[p], active[p], hits[p]);
     if (accel.top.nodes.empty()) return;
     Stream& s = stream;
     const auto n_rays = static_cast<size_t>(count) * W;
@@ -461,7 +535,7 @@ void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacke
             const vmask<W> open = mask_andnot(active[p], occluded[p]);
             if (any(open))
                 occluded[p] = mask_or(
-                    occluded[p], intersect_object_any_from(scene, accel, object, rays[p], open, 0));
+                    occluded[p], intersect_object_any_from(scene, accel, object, rays[p], open));
         }
     }
     if (count <= 0 || accel.top.nodes.empty()) return;

@@ -18,6 +18,8 @@
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
 #include "scene/transform.h"
+#include "support/adversarial_rays.h"
+#include "support/geometry_support.h"
 #include "support/ray_packets.h"
 #include "support/widths.h"
 #include "traverse/intersect_block.h"
@@ -590,6 +592,25 @@ TYPED_TEST(IntersectPacket, BlocksCullOnlyNodesBeyondEveryLanesLimit) {
     EXPECT_EQ(hits_of[0], 7u * 16u) << "rows 1 to 7 hit the triangle at z = 10";
     EXPECT_EQ(hits_of[1], 8u * 16u) << "rows 8 to 15 hit the triangle at z = 9.995";
     EXPECT_EQ(closest_block_mismatches<W>(l, rays, want.closest), 0u);
+}
+
+/// The oracle test's adversarial rays (origins on face planes; zero, -0, denormal and tiny
+/// direction components; rays through corners and along edges), a million of them, at the cube
+/// and its coplanar floor: blocks of consecutive rays and streams give the scalar answers.
+TYPED_TEST(IntersectPacket, BlocksAndStreamsMatchScalarOnAdversarialRays) {
+    constexpr int W = TypeParam::value;
+    Loaded l;
+    using namespace geometry_test;
+    l.scene =
+        make_mesh_scene({make_cube_mesh(vec3(0.0f), vec3(1.0f)), make_floor_mesh(0.0f, 2.0f)});
+    l.accel = build_accel(l.scene, BuildParams{1});
+    const std::vector<Ray> rays = adversarial_rays(ray_count(1000000));
+    const ScalarAnswers want = scalar_answers(l, rays);
+    EXPECT_GT(want.hits, rays.size() / 5);
+    EXPECT_EQ(closest_block_mismatches<W>(l, rays, want.closest), 0u);
+    EXPECT_EQ(any_block_mismatches<W>(l, rays, want.blocked), 0u);
+    EXPECT_EQ(closest_stream_mismatches<W>(l, rays, want.closest), 0u);
+    EXPECT_EQ(any_stream_mismatches<W>(l, rays, want.blocked), 0u);
 }
 
 /// The camera's rays reversed, searching behind their origin (t in (-1e4, 0)): block culling
