@@ -347,7 +347,8 @@ void traverse_block_wide(const WideBvh& wide, const BlockBounds& bounds, int cou
             const Entry e{node_index, static_cast<uint16_t>(s), static_cast<uint16_t>(f),
                           static_cast<uint16_t>(l), t_enter[s]};
             int at = n++;
-            for (; at > 0 && entered[at - 1].t_enter > e.t_enter; --at) entered[at] = entered[at - 1];
+            for (; at > 0 && entered[at - 1].t_enter > e.t_enter; --at)
+                entered[at] = entered[at - 1];
             entered[at] = e;
         }
         for (int i = n - 1; i >= 0; --i) stack[top++] = entered[i];
@@ -481,8 +482,8 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
         for (int p = 0; p < count; ++p) {
             const vmask<W> lanes = mask_andnot(active[p], occluded[p]);
             if (any(lanes))
-                occluded[p] = mask_or(occluded[p], intersect_object_any_from(scene, accel, object,
-                                                                             rays[p], lanes));
+                occluded[p] = mask_or(
+                    occluded[p], intersect_object_any_from(scene, accel, object, rays[p], lanes));
         }
     }
     // the BVH: only when the block may meet its root box
@@ -515,9 +516,8 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                 for (int p = f; p <= l; ++p) {
                     const vmask<W> m = test(p, top_leaf);
                     if (none(m)) continue;
-                    occluded[p] = mask_or(
-                        occluded[p],
-                        intersect_object_any_from(scene, accel, object_index, rays[p], m));
+                    occluded[p] = mask_or(occluded[p], intersect_object_any_from(
+                                                           scene, accel, object_index, rays[p], m));
                     open[p] = mask_andnot(active[p], occluded[p]);
                 }
                 continue;

@@ -269,10 +269,10 @@ void traverse_stream_wide(const WideBvh& wide, const Stream& s, const int32_t* l
                 gather_slab<W>(s, idx, sr, t_min, limit);
                 for (int k = 0; k < slots; ++k) {
                     vfloat<W> near;
-                    const vmask<W> h = intersect_slab(
-                        sr, vec3(node.lo[0][k], node.lo[1][k], node.lo[2][k]),
-                        vec3(node.hi[0][k], node.hi[1][k], node.hi[2][k]), t_min, limit, near,
-                        lanes);
+                    const vmask<W> h =
+                        intersect_slab(sr, vec3(node.lo[0][k], node.lo[1][k], node.lo[2][k]),
+                                       vec3(node.hi[0][k], node.hi[1][k], node.hi[2][k]), t_min,
+                                       limit, near, lanes);
                     count_of[k] += compress_store(region + k * e.n + count_of[k], idx, h);
                     near_sum[k] += hsum(select(h, near, vfloat<W>(0.0f)));
                 }
@@ -412,8 +412,7 @@ void mark_occluded(Stream& s, const vint<W>& idx, vmask<W> found) {
 
 /// The any-hit leaf: the open rays of a list against a mesh leaf's triangles, W at a time.
 template <int W>
-void stream_leaf_any(Stream& s, const MeshAccel& mesh, WideRef leaf, const int32_t* list,
-                     int n) {
+void stream_leaf_any(Stream& s, const MeshAccel& mesh, WideRef leaf, const int32_t* list, int n) {
     for (int j = 0; j < n; j += W) {
         vint<W> idx;
         vmask<W> lanes;
