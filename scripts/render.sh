@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Quick start 1: set up, build (release) and render. The dragon when its model is found,
-# the built-in scene otherwise. Extra arguments go to `raylane render`.
+# Quick start 1: set up, build (release) and render. A scene or model file given as the first
+# argument (bash scripts/render.sh bunny.ply); else the dragon when its model is found, the
+# built-in scene otherwise. Further arguments go to `raylane render`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -10,7 +11,13 @@ shared="$(cd .. && pwd)/shared"
 cmake --preset release >/dev/null
 cmake --build --preset release --target raylane
 mkdir -p out
-if ./build/release/raylane info scenes/dragon.json >/dev/null 2>&1; then
+if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then
+    input="$1"
+    shift
+    name="$(basename "$input")"
+    ./build/release/raylane render "$input" -o "out/${name%%.*}.png" "$@"
+    echo "image: $(pwd)/out/${name%%.*}.png"
+elif ./build/release/raylane info scenes/dragon.json >/dev/null 2>&1; then
     ./build/release/raylane render scenes/dragon.json -o out/dragon.png "$@"
     echo "image: $(pwd)/out/dragon.png"
 else

@@ -14,6 +14,11 @@ void add_render_command(CLI::App& app, int& exit_code);
 void add_info_command(CLI::App& app, int& exit_code);
 void add_compare_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
+void add_scene_command(CLI::App& app, int& exit_code);
+
+/// What `raylane --version` prints: the version and the instruction set and packet width the
+/// packet path was built for.
+std::string version_text();
 
 /// Adds --bvh to a command: median (the report's build, the default) or sah (binned SAH, a
 /// comparison option).
@@ -40,8 +45,10 @@ BuildParams build_params(const std::string& bvh);
 /// Applies --width/--height to the camera; one alone keeps the aspect ratio.
 void apply_resolution(Camera& camera, int width, int height);
 
-/// A scene file, or the built-in scene when `path` is empty.
-Scene load_scene_or_builtin(const std::string& path);
+/// The scene a command works on: the built-in scene when `path` is empty, a model file's own
+/// scene (io/model_scene.h) for .obj and .ply, else a JSON scene file. A file that is none of
+/// these (no .json extension and not a JSON object) throws InputError saying what was expected.
+Scene load_command_scene(const std::string& path);
 
 /// Milliseconds since `start` (a steady_clock time point in seconds).
 double elapsed_ms(double start_seconds);

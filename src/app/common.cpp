@@ -3,18 +3,22 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "app/commands.h"
 #include "core/error.h"
 #include "image/film.h"
 #include "io/load_scene.h"
+#include "io/model_scene.h"
+#include "simd/simd.h"
 
 namespace raylane {
 
@@ -85,8 +89,43 @@ BuildParams build_params(const std::string& bvh) {
     return params;
 }
 
-Scene load_scene_or_builtin(const std::string& path) {
-    return path.empty() ? make_builtin_scene() : load_scene(path);
+std::string version_text() {
+    const char* isa = native_width == 16  ? "AVX-512"
+                      : native_width == 8 ? "AVX2 and FMA"
+                      : native_width == 4 ? "SSE"
+                                          : "no SIMD";
+    return std::string("raylane ") + RAYLANE_VERSION + "\npacket path: " + isa + ", " +
+           std::to_string(native_width) + " rays per packet";
+}
+
+namespace {
+
+bool has_extension(const std::string& path, const std::string& ext) {
+    std::string e = std::filesystem::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return e == ext;
+}
+
+/// Whether the file's first character that is not white space is '{' (a JSON object).
+bool starts_like_json(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char c = 0;
+    while (in.get(c))
+        if (!std::isspace(static_cast<unsigned char>(c))) return c == '{';
+    return false;
+}
+
+}  // namespace
+
+Scene load_command_scene(const std::string& path) {
+    if (path.empty()) return make_builtin_scene();
+    if (is_model_file(path)) return load_model_scene(path);
+    if (!has_extension(path, ".json") && !starts_like_json(path))
+        throw InputError(path +
+                         ": neither a scene nor a model: expected a JSON scene (.json) or a "
+                         "model (.obj, .ply)");
+    return load_scene(path);
 }
 
 void apply_resolution(Camera& cam, int width, int height) {

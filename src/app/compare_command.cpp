@@ -19,7 +19,7 @@ struct CompareOptions {
 };
 
 int run_compare(const CompareOptions& o) {
-    Scene scene = load_scene_or_builtin(o.scene_path);
+    Scene scene = load_command_scene(o.scene_path);
     apply_resolution(scene.camera, o.width, o.height);
     const Accel accel = build_accel(scene, build_params(o.bvh));
     RenderParams params;
@@ -66,7 +66,8 @@ void add_compare_command(CLI::App& app, int& exit_code) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* cmd = app.add_subcommand(
         "compare", "render with both paths and report their difference and speed-up");
-    cmd->add_option("scene", o->scene_path, "scene JSON file (default: the built-in scene)")
+    cmd->add_option("scene", o->scene_path,
+                    "scene JSON file or model (.obj, .ply; default: the built-in scene)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
         ->check(CLI::Range(1, 1 << 20));

@@ -33,7 +33,7 @@ void print_wide(const WideStats& s, size_t triangles, size_t shared_bytes) {
 
 int run_info(const std::string& path, const std::string& bvh) {
     const double t_load = now_seconds();
-    const Scene scene = load_scene_or_builtin(path);
+    const Scene scene = load_command_scene(path);
     const double load_ms = elapsed_ms(t_load);
     const double t_build = now_seconds();
     const Accel accel = build_accel(scene, build_params(bvh));
@@ -93,7 +93,8 @@ void add_info_command(CLI::App& app, int& exit_code) {
     auto path = std::make_shared<std::string>();
     auto bvh = std::make_shared<std::string>("median");
     CLI::App* cmd = app.add_subcommand("info", "print scene and BVH statistics");
-    cmd->add_option("scene", *path, "scene JSON file (default: the built-in scene)")
+    cmd->add_option("scene", *path,
+                    "scene JSON file or model (.obj, .ply; default: the built-in scene)")
         ->check(CLI::ExistingFile);
     add_bvh_option(cmd, *bvh);
     cmd->callback([path, bvh, &exit_code] { exit_code = run_info(*path, *bvh); });

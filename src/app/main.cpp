@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
     raylane::add_info_command(app, exit_code);
     raylane::add_compare_command(app, exit_code);
     raylane::add_report_command(app, exit_code);
+    raylane::add_scene_command(app, exit_code);
+    app.set_version_flag("--version", raylane::version_text());
     // CLI11 answers an unknown command word with "A subcommand is required": name it instead
     if (argc > 1 && argv[1][0] != '-') {
         std::string names;
@@ -55,6 +57,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "raylane: %s (see raylane --help)\n", e.what());

@@ -45,7 +45,7 @@ int run_render(const RenderOptions& o) {
             throw InputError("output: " + why);
     }
     const double t_load = now_seconds();
-    Scene scene = load_scene_or_builtin(o.scene_path);
+    Scene scene = load_command_scene(o.scene_path);
     const double load_ms = elapsed_ms(t_load);
     apply_resolution(scene.camera, o.width, o.height);
     params.spp = o.spp > 0 ? o.spp : scene.camera.spp;
@@ -113,7 +113,8 @@ int run_render(const RenderOptions& o) {
 void add_render_command(CLI::App& app, int& exit_code) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene (the built-in scene without one)");
-    cmd->add_option("scene", o->scene_path, "scene JSON file")->check(CLI::ExistingFile);
+    cmd->add_option("scene", o->scene_path, "scene JSON file or model (.obj, .ply)")
+        ->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", o->output, "image to write (.png or .pfm; default SCENE.png)")
         ->check(image_output());
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")

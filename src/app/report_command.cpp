@@ -513,7 +513,7 @@ int run_report(ReportOptions o) {
         LoadedScene ls;
         ls.path = path;
         const double t = now_seconds();
-        ls.scene = load_scene_or_builtin(path);
+        ls.scene = load_command_scene(path);
         ls.load_ms = elapsed_ms(t);
         apply_resolution(ls.scene.camera, o.width, o.height);
         ls.stem = std::filesystem::path(path).stem().string();
@@ -536,7 +536,9 @@ void add_report_command(CLI::App& app, int& exit_code) {
     auto o = std::make_shared<ReportOptions>();
     CLI::App* cmd = app.add_subcommand(
         "report", "error against run time: a reference, then a sample sweep of both paths");
-    cmd->add_option("scenes", o->scenes, "scene JSON files")->required()->check(CLI::ExistingFile);
+    cmd->add_option("scenes", o->scenes, "scene JSON files or models (.obj, .ply)")
+        ->required()
+        ->check(CLI::ExistingFile);
     cmd->add_option("--out-dir", o->out_dir,
                     "where references, CSV and SVG go (default out/report)");
     cmd->add_option("--reference-spp", o->reference_spp,

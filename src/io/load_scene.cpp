@@ -179,10 +179,15 @@ ShadingOptions SceneReader::read_shading(const Node& n) const {
     return o;
 }
 
-Scene load_scene_from_string(std::string_view json, const std::string& path_for_errors) {
+Scene load_scene_from_string(std::string_view json, const std::string& path_for_errors,
+                             std::map<std::string, Mesh> loaded) {
     Json root = parse_json(json, path_for_errors, max_scene_json_depth);
-    const std::filesystem::path dir = std::filesystem::path(path_for_errors).parent_path();
-    return SceneReader(path_for_errors, dir.empty() ? std::string(".") : dir.string()).read(root);
+    return SceneReader(path_for_errors, scene_dir(path_for_errors), std::move(loaded)).read(root);
+}
+
+std::string scene_dir(const std::string& scene_path) {
+    const std::filesystem::path dir = std::filesystem::path(scene_path).parent_path();
+    return dir.empty() ? std::string(".") : dir.string();
 }
 
 Scene load_scene(const std::string& path) {

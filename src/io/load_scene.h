@@ -2,6 +2,7 @@
 // meshes come through io/load_mesh.h, found by io/model_path.h.
 #pragma once
 
+#include <map>
 #include <string>
 #include <string_view>
 
@@ -21,7 +22,13 @@ inline constexpr size_t max_scene_file_bytes = size_t{64} << 20;
 Scene load_scene(const std::string& path);
 
 /// As load_scene, from text in memory. `path_for_errors` names the scene in messages and its
-/// folder is where meshes are looked up first; it is stored in Scene::source.
-Scene load_scene_from_string(std::string_view json, const std::string& path_for_errors);
+/// folder is where meshes are looked up first; it is stored in Scene::source. `loaded` holds
+/// meshes already read, by the path find_model gives for their file name: they are not read
+/// again.
+Scene load_scene_from_string(std::string_view json, const std::string& path_for_errors,
+                             std::map<std::string, Mesh> loaded = {});
+
+/// The folder a scene file's models are looked up in first: the file's own ("." when none).
+std::string scene_dir(const std::string& scene_path);
 
 }  // namespace raylane

@@ -19,8 +19,9 @@ namespace raylane {
 /// The scene format on top of JsonReader's strict typed reads (every error names the JSON path).
 class SceneReader : JsonReader {
   public:
-    SceneReader(std::string file, std::string dir)
-        : JsonReader(std::move(file)), dir_(std::move(dir)) {}
+    /// `loaded`: meshes already read, by the path find_model gives for their file name.
+    SceneReader(std::string file, std::string dir, std::map<std::string, Mesh> loaded = {})
+        : JsonReader(std::move(file)), dir_(std::move(dir)), meshes_(std::move(loaded)) {}
 
     Scene read(const Json& root);
 

@@ -27,11 +27,21 @@ std::string temp_file(const std::string& name, const std::string& text) {
 }
 
 TEST(Cli, HelpWorksForEveryCommand) {
-    for (const char* cmd : {"--help", "render --help", "info --help", "compare --help"}) {
+    for (const char* cmd :
+         {"--help", "render --help", "info --help", "compare --help", "scene --help"}) {
         const CliRun r = run(cmd);
         EXPECT_EQ(r.code, 0) << cmd;
         EXPECT_NE(r.out.find("Usage"), std::string::npos) << cmd;
     }
+}
+
+TEST(Cli, VersionNamesTheInstructionSetOfThePacketPath) {
+    const CliRun r = run("--version");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("raylane ", 0), 0u) << r.out;
+    EXPECT_NE(r.out.find("packet path: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" rays per packet"), std::string::npos) << r.out;
+    EXPECT_EQ(lines(r.out), 2u) << r.out;
 }
 
 TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {

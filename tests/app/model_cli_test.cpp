@@ -1,0 +1,85 @@
+// Tests of the command line on a model file: `render MODEL`, `scene MODEL`, `info MODEL`, and a
+// file that is neither a scene nor a model.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "image/pfm.h"
+#include "support/cli_run.h"
+#include "support/temp_dir.h"
+
+namespace raylane {
+namespace {
+
+using test::CliRun;
+using test::run;
+using test::slurp;
+using test::TempDir;
+using test::write_file;
+
+const std::string bunny = std::string(RAYLANE_SHARED_DIR) + "/models/bunny.ply";
+
+TEST(ModelCli, RenderModelShowsTheModelLit) {
+    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
+    TempDir dir("raylane_model_cli_");
+    const std::string pfm = (dir.path / "bunny.pfm").string();
+    const CliRun r = run("render " + bunny + " --width 160 -q -o " + pfm);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("scene      " + bunny), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("resolution 160x90"), std::string::npos) << r.out;
+    const std::optional<Film> film = read_pfm(pfm, 160, 90);
+    ASSERT_TRUE(film.has_value());
+    // lit and not flat: the model in the middle differs from the floor at the bottom corners
+    double sum = 0.0, lo = 1e30, hi = -1e30;
+    for (const vec3& c : film->pixels) {
+        ASSERT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+        const double y = (c.x + c.y + c.z) / 3.0;
+        sum += y, lo = std::min(lo, y), hi = std::max(hi, y);
+    }
+    EXPECT_GT(sum / double(film->pixels.size()), 0.05);
+    EXPECT_GT(hi - lo, 0.2);
+}
+
+TEST(ModelCli, TheSceneCommandPrintsWhatRenderRenders) {
+    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
+    TempDir dir("raylane_model_cli_");
+    const CliRun s = run("scene " + bunny);
+    ASSERT_EQ(s.code, 0) << s.err;
+    write_file(dir.path / "bunny.json", s.out);
+    const std::string a = (dir.path / "a.png").string(), b = (dir.path / "b.png").string();
+    const CliRun ra = run("render " + bunny + " --width 96 -q -o " + a);
+    const CliRun rb =
+        run("render " + (dir.path / "bunny.json").string() + " --width 96 -q -o " + b);
+    ASSERT_EQ(ra.code, 0) << ra.err;
+    ASSERT_EQ(rb.code, 0) << rb.err;
+    const std::string bytes = slurp(a);
+    EXPECT_GT(bytes.size(), 100u);
+    EXPECT_EQ(bytes, slurp(b)) << "the printed scene renders the same image";
+}
+
+TEST(ModelCli, InfoAndCompareTakeAModel) {
+    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
+    const CliRun info = run("info " + bunny);
+    ASSERT_EQ(info.code, 0) << info.err;
+    EXPECT_NE(info.out.find("wide tree"), std::string::npos) << info.out;
+    const CliRun compare = run("compare " + bunny + " --width 48");
+    EXPECT_EQ(compare.code, 0) << compare.err << compare.out;
+}
+
+TEST(ModelCli, AFileThatIsNeitherSceneNorModelSaysWhatWasExpected) {
+    TempDir dir("raylane_model_cli_");
+    write_file(dir.path / "notes.txt", "hello\n");
+    const CliRun r = run("render " + (dir.path / "notes.txt").string());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(r.err, "raylane: " + (dir.path / "notes.txt").string() +
+                         ": neither a scene nor a model: expected a JSON scene (.json) or a "
+                         "model (.obj, .ply)\n");
+    const CliRun s = run("scene " + (dir.path / "notes.txt").string());
+    EXPECT_EQ(s.code, 2);
+    EXPECT_NE(s.err.find("not a model: expected an .obj or .ply file"), std::string::npos) << s.err;
+}
+
+}  // namespace
+}  // namespace raylane
