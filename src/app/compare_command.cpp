@@ -16,6 +16,7 @@ struct CompareOptions {
     int spp = 0, threads = 0, width = 0, height = 0;
     double tolerance = 2e-3;
     size_t id_allowance = 0;
+    bool quiet = false;
 };
 
 int run_compare(const CompareOptions& o) {
@@ -25,14 +26,18 @@ int run_compare(const CompareOptions& o) {
     RenderParams params;
     params.spp = o.spp > 0 ? o.spp : scene.camera.spp;
     params.threads = worker_threads(o.threads);
+    params.progress = !o.quiet;
+    std::printf("scene        %s (%dx%d, %d spp)\n", scene.source.c_str(), scene.camera.width,
+                scene.camera.height, params.spp);
+    std::fflush(stdout);  // before the progress lines
+    params.progress_label = "scalar";
     const RenderResult scalar = render_scalar(scene, accel, params);
+    params.progress_label = "packet";
     const RenderResult packet = render_packet(scene, accel, params);
     const ImageDiff d = diff_images(scalar.film, packet.film);
     const size_t ids = primary_id_mismatches(scene, accel);
     const size_t pixels = scalar.film.pixels.size();
 
-    std::printf("scene        %s (%dx%d, %d spp)\n", scene.source.c_str(), scene.camera.width,
-                scene.camera.height, params.spp);
     std::printf("scalar       %.1f ms\n", 1000.0 * scalar.stats.seconds);
     std::printf("packet       %.1f ms (W = %d)\n", 1000.0 * packet.stats.seconds, native_width);
     std::printf("speed-up     %.2fx\n", scalar.stats.seconds / packet.stats.seconds);
@@ -80,6 +85,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
         ->check(finite_non_negative());
     cmd->add_option("--id-allowance", o->id_allowance, "primary hits allowed to differ (default 0)")
         ->transform(whole_number());
+    cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
     cmd->callback([o, &exit_code] { exit_code = run_compare(*o); });
 }
 

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "render/warnings.h"
 #include "scene/features.h"
 #include "simd/simd.h"
 
@@ -52,14 +53,31 @@ int run_render(const RenderOptions& o) {
     params.threads = worker_threads(o.threads);
     params.seed = o.seed;
     params.progress = !o.quiet;
+    const int threads = params.threads > 0 ? params.threads : tbb::info::default_concurrency();
+    // what is being rendered, before the progress line
+    std::printf("scene      %s\n", scene.source.c_str());
+    std::printf("resolution %dx%d, %d spp, %s\n", scene.camera.width, scene.camera.height,
+                params.spp, aov_name(params.aov));
+    if (o.path == "scalar")
+        std::printf("path       scalar, %d threads\n", threads);
+    else
+        std::printf("path       packet (W = %d), %d threads\n", native_width, threads);
+    std::fflush(stdout);
 
     const double t_build = now_seconds();
     const Accel accel = build_accel(scene, build_params(o.bvh));
     const double build_ms = elapsed_ms(t_build);
+    for (const std::string& w : scene_warnings(scene, accel))
+        std::printf("warning    %s\n", w.c_str());
+    std::fflush(stdout);
 
     RenderResult result = o.path == "scalar" ? render_scalar(scene, accel, params)
                                              : render_packet(scene, accel, params);
     const bool colour = params.aov == Aov::color;
+    const uint64_t samples =
+        uint64_t(scene.camera.width) * uint64_t(scene.camera.height) * uint64_t(params.spp);
+    const std::vector<std::string> warnings =
+        colour ? render_warnings(result.film, result.stats, samples) : std::vector<std::string>{};
     const bool report_look = colour && scene.tonemap == Tonemap::report;
     // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages)
     const Film film = report_look ? hue_preserving_clamp(std::move(result.film))
@@ -70,14 +88,6 @@ int run_render(const RenderOptions& o) {
     });
 
     const RenderStats& s = result.stats;
-    const int threads = params.threads > 0 ? params.threads : tbb::info::default_concurrency();
-    std::printf("scene      %s\n", scene.source.c_str());
-    std::printf("resolution %dx%d, %d spp, %s\n", scene.camera.width, scene.camera.height,
-                params.spp, aov_name(params.aov));
-    if (o.path == "scalar")
-        std::printf("path       scalar, %d threads\n", threads);
-    else
-        std::printf("path       packet (W = %d), %d threads\n", native_width, threads);
     std::printf("features   %s\n", feature_names(scene_features(scene)).c_str());
     if (o.bvh != "median") std::printf("bvh        %s\n", o.bvh.c_str());
     std::printf("rays       %llu primary, %llu shadow",
@@ -98,6 +108,7 @@ int run_render(const RenderOptions& o) {
         std::printf("warning    %llu NaN and %llu infinite samples were left out of their pixels\n",
                     static_cast<unsigned long long>(s.nan_samples),
                     static_cast<unsigned long long>(s.inf_samples));
+    for (const std::string& w : warnings) std::printf("warning    %s\n", w.c_str());
     std::printf("image      %s\n", output.c_str());
     if (o.strict && s.bad_samples() > 0) {
         std::fprintf(stderr, "raylane: %s: %llu NaN and %llu infinite samples (--strict)\n",

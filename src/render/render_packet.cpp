@@ -643,7 +643,7 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     const int tile_size = std::min(params.tile_size, 16);
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, tile_size);
     PerThreadStats per_thread;
-    Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
+    Progress progress{params.progress_label, tiles.size(), params.progress && stderr_is_terminal()};
     const PacketLanes<W> lanes = make_packet_lanes<W>(cam.width);
     const ShadeParams shade{params.light_samples, params.glossy_samples};
     const int wavefront_samples = samples_per_wavefront(scene, shade);

@@ -25,7 +25,8 @@ struct RenderParams {
     int glossy_samples = 0;  ///< glossy rays per hit; 0 = each material's own
     int tile_size = 16;
     bool generic_kernel = false;  ///< packet path: the all-features kernel whatever the scene uses
-    bool progress = false;        ///< progress on stderr
+    bool progress = false;        ///< progress on stderr (on a terminal)
+    const char* progress_label = "render";  ///< what the progress line calls the render
 };
 
 struct RenderStats {

@@ -50,7 +50,7 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     const int spp = params.spp > 0 ? params.spp : 1;
     const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size);
     PerThreadStats per_thread;
-    Progress progress{"render", tiles.size(), params.progress && stderr_is_terminal()};
+    Progress progress{params.progress_label, tiles.size(), params.progress && stderr_is_terminal()};
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
         ShadeCounts counts;

@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <stdexcept>
 #include <vector>
@@ -27,13 +28,16 @@ void enable_flush_to_zero();
 /// True when stderr is a terminal (progress is shown only then).
 bool stderr_is_terminal();
 
-/// Prints "label: N%" on stderr when it changes (only when stderr is a terminal and `enabled`).
+/// Prints "label: N%, T s, ~R s left" on stderr when the percentage changes (only when stderr
+/// is a terminal and `enabled`): the time since it was made and, from 2 % on, an estimate of
+/// the time left from the pace so far.
 struct Progress {
     const char* label;
     size_t total;
     bool enabled;
     std::atomic<size_t> done{0};
     std::atomic<int> shown{-1};
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
     void step();
     void finish();
 };

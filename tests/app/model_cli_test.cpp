@@ -81,5 +81,42 @@ TEST(ModelCli, AFileThatIsNeitherSceneNorModelSaysWhatWasExpected) {
     EXPECT_NE(s.err.find("not a model: expected an .obj or .ply file"), std::string::npos) << s.err;
 }
 
+TEST(ModelCli, RenderWarnsOfAnUnlitSceneACameraThatSeesNothingAndABlackImage) {
+    TempDir dir("raylane_model_cli_");
+    write_file(dir.path / "away.json",
+               R"({"version": 1, "camera": {"position": [0, 0, -5], "look_at": [0, 0, -10],
+                   "fov_deg": 40, "resolution": [32, 24]},
+                   "materials": {"m": {"c_d": [1, 0, 0]}},
+                   "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1,
+                                "material": "m"}],
+                   "lights": []})");
+    const CliRun r = run("render " + (dir.path / "away.json").string() + " -q -o " +
+                         (dir.path / "away.png").string());
+    EXPECT_EQ(r.code, 0) << r.err;
+    for (const char* w :
+         {"warning    the scene has no lights", "warning    the camera sees no object",
+          "warning    every pixel is black"})
+        EXPECT_NE(r.out.find(w), std::string::npos) << w << "\n" << r.out;
+    EXPECT_TRUE(std::filesystem::exists(dir.path / "away.png")) << "the render still runs";
+}
+
+TEST(ModelCli, ThePngBytesDoNotDependOnTheThreadCount) {
+    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
+    TempDir dir("raylane_model_cli_");
+    std::string first;
+    for (int threads : {1, 2}) {
+        const std::string n = std::to_string(threads);
+        const std::string png = (dir.path / (n + ".png")).string();
+        const CliRun r = run("render " + bunny + " --width 200 -q --threads " + n + " -o " + png);
+        ASSERT_EQ(r.code, 0) << r.err;
+        const std::string bytes = slurp(png);
+        ASSERT_GT(bytes.size(), 1000u);
+        if (first.empty())
+            first = bytes;
+        else
+            EXPECT_EQ(bytes, first) << "threads " << threads;
+    }
+}
+
 }  // namespace
 }  // namespace raylane
