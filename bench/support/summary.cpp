@@ -9,6 +9,7 @@
 #include <cstring>
 #include <iostream>
 #include <random>
+#include <sstream>
 
 namespace raylane::bench {
 
@@ -19,6 +20,27 @@ std::optional<double> median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// Debian's libbenchmark is built without NDEBUG, so every run's header says "***WARNING***
+/// Library was built as DEBUG. Timings may be affected."; this says what it means, on stderr
+/// (stdout may be a JSON or CSV report).
+void print_debug_library_note() {
+    std::fprintf(stderr,
+                 "(A \"Library was built as DEBUG\" warning in the header below is about Debian's "
+                 "Google Benchmark package, whose own code keeps its assertions; the code "
+                 "measured is Raylane's, built -O3 -DNDEBUG.)\n");
+}
+
+/// What --help adds to Google Benchmark's own usage.
+void print_summary_usage(const char* program) {
+    std::printf(
+        "%s: a Google Benchmark program of Raylane (docs/performance.md).\n"
+        "  --summary   after the runs, print a Markdown table of the medians of the repetitions,\n"
+        "              the ratios (to the scalar path, to Embree) and whether each target is met\n"
+        "              (use --benchmark_repetitions=3 or more); console output only\n"
+        "Google Benchmark's own options:\n",
+        program);
 }
 
 /// The console reporter, keeping every run's figures for the summary.
@@ -82,6 +104,7 @@ int run_benchmarks(int argc, char** argv, Summary summary) {
     bool want_summary = false, other_format = false;
     int kept = 1;
     for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--help") == 0) print_summary_usage(argv[0]);
         if (std::strcmp(argv[i], "--summary") == 0) {
             want_summary = true;
             continue;
@@ -101,13 +124,20 @@ int run_benchmarks(int argc, char** argv, Summary summary) {
     }
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    print_debug_library_note();
     if (want_summary) {
         Measured measured;
         SummaryReporter reporter(measured);
         benchmark::RunSpecifiedBenchmarks(&reporter);
         if (!measured.empty()) {  // not for --benchmark_list_tests
-            std::cout << '\n';
-            summary(measured, std::cout);
+            std::ostringstream table;
+            summary(measured, table);
+            std::cout << '\n' << table.str();
+            if (table.str().find("—") != std::string::npos)
+                std::cout << "\n— marks a figure whose benchmark did not run: left out by "
+                             "--benchmark_filter, or a contender this build lacks (Embree, when "
+                             "libembree-dev is not installed; a packet width the CPU does not "
+                             "run).\n";
         }
     } else {
         benchmark::RunSpecifiedBenchmarks();

@@ -79,9 +79,20 @@ int run_render(const RenderOptions& o) {
     const std::vector<std::string> warnings =
         colour ? render_warnings(result.film, result.stats, samples) : std::vector<std::string>{};
     const bool report_look = colour && scene.tonemap == Tonemap::report;
-    // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages)
-    const Film film = report_look ? hue_preserving_clamp(std::move(result.film))
-                                  : visualise_aov(std::move(result.film), params.aov);
+    // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages).
+    // A PFM holds an AOV's raw values (scene units, counts); a PNG its mapping, named by `scale`.
+    const bool raw = !colour && image_format(output) == ImageFormat::pfm;
+    std::string scale;
+    Film film;
+    if (report_look) {
+        film = hue_preserving_clamp(std::move(result.film));
+    } else if (raw) {
+        film = std::move(result.film);
+    } else {
+        AovView view = visualise_aov(std::move(result.film), params.aov);
+        film = std::move(view.film);
+        scale = std::move(view.scale);
+    }
     // the bytes and the PNG's stream are made in parallel: on the threads --threads allows
     tbb::task_arena(params.threads > 0 ? params.threads : tbb::task_arena::automatic).execute([&] {
         write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
@@ -108,6 +119,9 @@ int run_render(const RenderOptions& o) {
         std::printf("warning    %llu NaN and %llu infinite samples were left out of their pixels\n",
                     static_cast<unsigned long long>(s.nan_samples),
                     static_cast<unsigned long long>(s.inf_samples));
+    if (!scale.empty()) std::printf("scale      %s\n", scale.c_str());
+    if (raw)
+        std::printf("values     raw %s (docs/scene-format.md, Outputs)\n", aov_name(params.aov));
     for (const std::string& w : warnings) std::printf("warning    %s\n", w.c_str());
     std::printf("image      %s\n", output.c_str());
     if (o.strict && s.bad_samples() > 0) {

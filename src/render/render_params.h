@@ -57,13 +57,25 @@ struct RenderStats {
 };
 
 struct RenderResult {
-    Film film;  ///< linear colour, or the raw AOV (normal in [-1, 1], depth t, nodes visited)
+    /// Linear colour, or the raw AOV: the shading normal in [-1, 1] (0 where the ray misses),
+    /// depth as the distance along the camera ray in scene units (0 where it misses), the BVH
+    /// nodes visited (a count); averaged over the pixel's samples.
+    Film film;
     RenderStats stats;
 };
 
-/// Maps a raw AOV film to something to look at: normal * 0.5 + 0.5, depth / max depth,
-/// nodes visited in false colour scaled to the image's maximum. Colour passes through. Takes the
-/// film by value: pass an rvalue to map it in place.
-Film visualise_aov(Film film, Aov aov);
+/// An AOV mapped for a PNG, and the scale it used, in words for the user.
+struct AovView {
+    Film film;
+    std::string scale;  ///< e.g. "depth: white at 1.2, black at 45 and beyond (scene units)"
+};
+
+/// Maps a raw AOV film (RenderResult::film) to something to look at: normal * 0.5 + 0.5; depth
+/// on a log scale from white at the nearest hit to black at the 98th percentile of the hit
+/// distances (so that a floor running to the horizon does not take the range), misses black;
+/// nodes visited
+/// in false colour from 0 (blue) to the image's maximum (red). Colour passes through, with no
+/// scale. Takes the film by value: pass an rvalue to map it in place.
+AovView visualise_aov(Film film, Aov aov);
 
 }  // namespace raylane

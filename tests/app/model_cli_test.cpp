@@ -100,6 +100,32 @@ TEST(ModelCli, RenderWarnsOfAnUnlitSceneACameraThatSeesNothingAndABlackImage) {
     EXPECT_TRUE(std::filesystem::exists(dir.path / "away.png")) << "the render still runs";
 }
 
+TEST(ModelCli, ADepthPfmIsInSceneUnitsAndItsPngNamesItsScale) {
+    // a unit sphere 5 in front of the camera: the centre pixel's ray hits it at 4
+    TempDir dir("raylane_model_cli_");
+    write_file(dir.path / "ball.json",
+               R"({"version": 1, "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0],
+                   "fov_deg": 40, "resolution": [33, 33]},
+                   "materials": {"m": {"c_d": [1, 1, 1]}},
+                   "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1,
+                                "material": "m"}],
+                   "lights": [{"type": "point", "position": [0, 5, -5]}]})");
+    const std::string scene = (dir.path / "ball.json").string();
+    const std::string pfm = (dir.path / "d.pfm").string();
+    const CliRun raw = run("render " + scene + " --aov depth -q -o " + pfm);
+    ASSERT_EQ(raw.code, 0) << raw.err;
+    EXPECT_NE(raw.out.find("values     raw depth"), std::string::npos) << raw.out;
+    const std::optional<Film> film = read_pfm(pfm, 33, 33);
+    ASSERT_TRUE(film.has_value());
+    EXPECT_NEAR(film->at(16, 16).x, 4.0f, 1e-5f);
+    EXPECT_EQ(film->at(0, 0).x, 0.0f) << "a miss";
+    const CliRun png =
+        run("render " + scene + " --aov depth -q -o " + (dir.path / "d.png").string());
+    ASSERT_EQ(png.code, 0) << png.err;
+    EXPECT_NE(png.out.find("scale      depth: log scale, white at 4, black at "), std::string::npos)
+        << png.out;
+}
+
 TEST(ModelCli, ThePngBytesDoNotDependOnTheThreadCount) {
     if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
     TempDir dir("raylane_model_cli_");
