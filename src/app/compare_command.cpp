@@ -1,6 +1,8 @@
 // app: `raylane compare SCENE`: both paths with the same samples; differences and speed-up.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "app/commands.h"
 #include "render/compare.h"
@@ -11,9 +13,15 @@
 namespace raylane {
 namespace {
 
+double median_of(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 struct CompareOptions {
     std::string scene_path, bvh = "median";
-    int spp = 0, threads = 0, width = 0, height = 0;
+    int spp = 0, threads = 0, width = 0, height = 0, repeats = 3;
     double tolerance = 2e-3;
     size_t id_allowance = 0;
     bool quiet = false;
@@ -30,17 +38,35 @@ int run_compare(const CompareOptions& o) {
     std::printf("scene        %s (%dx%d, %d spp)\n", scene.source.c_str(), scene.camera.width,
                 scene.camera.height, params.spp);
     std::fflush(stdout);  // before the progress lines
-    params.progress_label = "scalar";
-    const RenderResult scalar = render_scalar(scene, accel, params);
-    params.progress_label = "packet";
-    const RenderResult packet = render_packet(scene, accel, params);
+    // timed as `report` times: one untimed 1-spp render per path first, then the paths in
+    // turn, `repeats` times, the median of each; the images are the first run's (every run
+    // renders the same samples)
+    RenderParams warm = params;
+    warm.spp = 1;
+    warm.progress = false;
+    (void)render_scalar(scene, accel, warm);
+    (void)render_packet(scene, accel, warm);
+    RenderResult scalar, packet;
+    std::vector<double> scalar_s, packet_s;
+    for (int r = 0; r < o.repeats; ++r) {
+        params.progress_label = "scalar";
+        RenderResult a = render_scalar(scene, accel, params);
+        params.progress_label = "packet";
+        RenderResult b = render_packet(scene, accel, params);
+        scalar_s.push_back(a.stats.seconds), packet_s.push_back(b.stats.seconds);
+        if (r == 0) scalar = std::move(a), packet = std::move(b);
+    }
+    const double scalar_median = median_of(scalar_s), packet_median = median_of(packet_s);
     const ImageDiff d = diff_images(scalar.film, packet.film);
     const size_t ids = primary_id_mismatches(scene, accel);
     const size_t pixels = scalar.film.pixels.size();
 
-    std::printf("scalar       %.1f ms\n", 1000.0 * scalar.stats.seconds);
-    std::printf("packet       %.1f ms (W = %d)\n", 1000.0 * packet.stats.seconds, native_width);
-    std::printf("speed-up     %.2fx\n", scalar.stats.seconds / packet.stats.seconds);
+    std::printf("bvh          %s\n", o.bvh == "sah" ? "binned SAH" : "median split");
+    std::printf("timing       median of %d run%s per path, after an untimed warm-up\n", o.repeats,
+                o.repeats == 1 ? "" : "s");
+    std::printf("scalar       %.1f ms\n", 1000.0 * scalar_median);
+    std::printf("packet       %.1f ms (W = %d)\n", 1000.0 * packet_median, native_width);
+    std::printf("speed-up     %.2fx\n", scalar_median / packet_median);
     std::printf("max |diff|   %.3g\n", d.max_abs);
     std::printf("mean |diff|  %.3g\n", d.mean_abs);
     std::printf("RMSE         %.3g\n", d.rmse);
@@ -70,7 +96,9 @@ int run_compare(const CompareOptions& o) {
 void add_compare_command(CLI::App& app, int& exit_code) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* cmd = app.add_subcommand(
-        "compare", "render with both paths and report their difference and speed-up");
+        "compare",
+        "render with both paths and report their difference and speed-up (timed as report "
+        "times: warmed up, the median of --repeats runs per path)");
     cmd->add_option("scene", o->scene_path,
                     "scene JSON file or model (.obj, .ply; default: the built-in scene)")
         ->check(CLI::ExistingFile);
@@ -85,6 +113,8 @@ void add_compare_command(CLI::App& app, int& exit_code) {
         ->check(finite_non_negative());
     cmd->add_option("--id-allowance", o->id_allowance, "primary hits allowed to differ (default 0)")
         ->transform(whole_number());
+    cmd->add_option("--repeats", o->repeats, "timed runs per path; time = median (default 3)")
+        ->check(CLI::Range(1, 100));
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
     cmd->callback([o, &exit_code] { exit_code = run_compare(*o); });
 }

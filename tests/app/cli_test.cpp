@@ -295,6 +295,20 @@ TEST(Cli, CompareAgreesOnTheBuiltinScene) {
     EXPECT_NE(r.out.find("PSNR"), std::string::npos);
 }
 
+TEST(Cli, CompareTimesLikeReportAndNamesTheBvh) {
+    const CliRun r = run("compare --width 64 -q");
+    EXPECT_EQ(r.code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("bvh          median split\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("timing       median of 3 runs per path, after an untimed warm-up\n"),
+              std::string::npos)
+        << r.out;
+    const CliRun one = run("compare --width 64 -q --bvh sah --repeats 1");
+    EXPECT_EQ(one.code, 0) << one.out << one.err;
+    EXPECT_NE(one.out.find("bvh          binned SAH\n"), std::string::npos) << one.out;
+    EXPECT_NE(one.out.find("median of 1 run per path"), std::string::npos) << one.out;
+    EXPECT_EQ(run("compare --repeats 0").code, 2);
+}
+
 TEST(Cli, CompareReadsItsAllowanceInDecimal) {
     // CLI11 alone reads "010" as octal 8
     const CliRun r = run("compare --width 16 --id-allowance 010 --tolerance 0.5");
