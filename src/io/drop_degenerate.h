@@ -8,7 +8,8 @@
 namespace raylane {
 
 /// Drops every triangle whose cross product is exactly zero in double (repeated or collinear
-/// vertices: never hit, no normal) together with its uv and normal triangles, and counts them in
+/// vertices: never hit, no normal) together with its uv and normal triangles and its material
+/// index, and counts them in
 /// mesh.dropped_triangles. Slivers with any area stay. Throws InputError "name: ..." when no
 /// triangle is left.
 void drop_zero_area_triangles(Mesh& mesh, const std::string& name_for_errors);

@@ -149,6 +149,12 @@ struct Mesh {
     std::vector<uvec3> uv_tris;
     glm::mat3 normal_to_world{1.0f};  ///< inverse transpose of the baked transform (normal maps)
     size_t dropped_triangles = 0;     ///< zero-area faces the loader removed
+    /// Materials the file names (an OBJ's `usemtl`), and per triangle the index of its own in
+    /// material_names; both empty when the file names none. The scene loader splits the mesh
+    /// by them (split_by_material) before it is traced.
+    std::vector<std::string> material_names;
+    std::vector<uint32_t> tri_material;
+    std::vector<std::string> material_libraries;  ///< an OBJ's `mtllib` files, as written
     size_t triangle_count() const { return tris.size(); }
 };
 
