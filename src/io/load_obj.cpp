@@ -6,12 +6,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "core/error.h"
 #include "io/drop_degenerate.h"
 #include "io/read_file.h"
+#include "io/text_lines.h"
 
 namespace raylane {
 
@@ -256,17 +256,13 @@ Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_err
     Mesh mesh;
     mesh.name = file_name_of(name_for_errors);
     ObjReader reader(name_for_errors, mesh);
-    const char* cur = text.data();
-    const char* text_end = text.data() + text.size();
-    if (text.size() >= 3 && std::memcmp(cur, "\xEF\xBB\xBF", 3) == 0) cur += 3;
-    while (cur < text_end) {
-        const void* newline = std::memchr(cur, '\n', static_cast<size_t>(text_end - cur));
-        const char* line_end = newline ? static_cast<const char*>(newline) : text_end;
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
+    LineCursor lines(text);
+    for (std::string_view line; lines.next(line);) {
         ++reader.line;
-        reader.p = cur;
-        reader.end = line_end;
+        reader.p = line.data();
+        reader.end = line.data() + line.size();
         reader.parse_line();
-        cur = newline ? line_end + 1 : text_end;
     }
     reader.check_forward_refs();
     if (mesh.tris.empty()) throw InputError(name_for_errors + ": no faces ('f' lines)");

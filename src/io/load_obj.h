@@ -13,8 +13,9 @@ namespace raylane {
 /// Accepted: `v x y z [w | r g b]`, `vt u [v [w]]`, `vn x y z`, and `f` in every index form
 /// (`v`, `v/vt`, `v//vn`, `v/vt/vn`) with positive or negative (relative) indices; polygons
 /// are split into a fan (c0, ci, ci+1). Faces may refer to vertices defined later in the
-/// file. CRLF or LF line ends, tabs and runs of spaces between tokens, a UTF-8 byte order mark,
-/// `#` comments (also after the values of a line) and a missing final newline are fine.
+/// file. LF, CR LF or CR-only line ends (mixed too), tabs and runs of spaces between tokens, a
+/// UTF-8 byte order mark, `#` comments (also after the values of a line) and a missing final
+/// newline are fine.
 ///
 /// Ignored: `o g s usemtl mtllib l p` and any other keyword (`vp`, `curv`, ...), i.e. any
 /// line whose first token is a letter followed by letters, digits or '_'.
@@ -26,7 +27,7 @@ namespace raylane {
 /// `#` or whitespace; a bad or missing number; NaN or infinite values; index 0; an index
 /// out of range (reported on the line of the first face using it); a face with fewer than 3
 /// corners; a face mixing index forms; a file without faces. Not supported: `\` line
-/// continuation and CR-only line ends.
+/// continuation.
 Mesh load_obj(const std::string& path);
 
 /// Same as load_obj on text already in memory; `name_for_errors` prefixes messages and

@@ -14,6 +14,7 @@
 #include "io/drop_degenerate.h"
 #include "io/ply_header.h"
 #include "io/read_file.h"
+#include "io/text_lines.h"
 
 namespace raylane {
 
@@ -290,23 +291,26 @@ struct PlyReader {
 
     // ascii ----------------------------------------------------------------------------
 
-    const char* cur = nullptr;       ///< start of the next line
-    const char* text_end = nullptr;  ///< end of the file
-    size_t line = 0;
+    LineCursor lines{std::string_view()};  ///< the body's lines, from the line after the header
+    size_t line = 0;                       ///< the line `tokens` holds
     Tokens tokens{nullptr, nullptr};
 
     [[noreturn]] void fail_here(const std::string& reason) const { fail_line(file, line, reason); }
 
+    static bool is_blank_line(std::string_view text) {
+        for (char c : text) {
+            if (!is_blank(c)) return false;
+        }
+        return true;
+    }
+
     /// Moves `tokens` to the next non-blank line; false at the end of the file.
     bool next_line() {
-        while (cur < text_end) {
-            const void* newline = std::memchr(cur, '\n', static_cast<size_t>(text_end - cur));
-            const char* line_end = newline ? static_cast<const char*>(newline) : text_end;
+        for (std::string_view text; lines.next(text);) {
             ++line;
-            tokens = Tokens{cur, line_end};
-            cur = newline ? line_end + 1 : text_end;
-            while (tokens.p < tokens.end && is_blank(*tokens.p)) ++tokens.p;
-            if (tokens.p < tokens.end) return true;
+            if (is_blank_line(text)) continue;
+            tokens = Tokens{text.data(), text.data() + text.size()};
+            return true;
         }
         return false;
     }
@@ -406,13 +410,12 @@ struct PlyReader {
     }
 
     void read_ascii() {
-        cur = bytes.data() + header.body_offset;
-        text_end = bytes.data() + bytes.size();
+        lines = LineCursor(bytes.substr(header.body_offset));
         line = header.header_lines;
         for (size_t ei = 0; ei < header.elements.size(); ++ei) {
             const PlyElement& e = header.elements[ei];
             // Every value takes a character and a separator (the last one may lack it).
-            const auto remaining = static_cast<size_t>(text_end - cur);
+            const auto remaining = static_cast<size_t>(bytes.data() + bytes.size() - lines.rest());
             if (e.count > (remaining + 1) / (2 * e.min_ascii_values)) {
                 fail_line(file, line + 1,
                           "file truncated or bad count: element " + quoted(e.name) + " declares " +

@@ -21,7 +21,8 @@ namespace raylane {
 /// - Other elements, before or after, are skipped (list properties included).
 /// normal_tris and uv_tris equal tris when the vertices carry normals / uvs.
 ///
-/// ASCII bodies hold one record per line (blank lines skipped); binary bytes after the last
+/// Lines (of the header and of ASCII bodies) may end in LF, CR LF or CR alone. ASCII bodies
+/// hold one record per line (blank lines skipped); binary bytes after the last
 /// element are ignored. Every element count is checked against the bytes left before
 /// anything is allocated for it.
 ///

@@ -2,11 +2,11 @@
 #include "io/ply_header.h"
 
 #include <charconv>
-#include <cstring>
 #include <iterator>
 
 #include "core/error.h"
 #include "io/read_file.h"
+#include "io/text_lines.h"
 
 namespace raylane::ply {
 
@@ -199,25 +199,23 @@ void finish_elements(const std::string& file, size_t line, PlyHeader& header) {
 std::string quoted(std::string_view text) { return quote_for_error(text); }
 
 PlyHeader parse_header(std::string_view bytes, const std::string& file) {
+    if (bytes.empty()) throw InputError(file + ": empty file, not a PLY file");
     PlyHeader header;
-    const char* cur = bytes.data();
-    const char* end = bytes.data() + bytes.size();
-    size_t line = 0;
+    LineCursor lines(bytes);
+    std::string_view text;
+    lines.next(text);
+    Tokens first{text.data(), text.data() + text.size()};
+    if (first.next() != "ply" || !first.next().empty()) {
+        fail_line(file, 1, "not a PLY file: the first line must be 'ply'");
+    }
+    const bool cr_only = lines.line_end() == "\r";
+    size_t line = 1;
     bool has_format = false;
     bool ended = false;
-    while (cur < end && !ended) {
-        const void* newline = std::memchr(cur, '\n', static_cast<size_t>(end - cur));
-        const char* line_end = newline ? static_cast<const char*>(newline) : end;
+    while (!ended && lines.next(text)) {
         ++line;
-        Tokens tokens{cur, line_end};
-        cur = newline ? line_end + 1 : end;
+        Tokens tokens{text.data(), text.data() + text.size()};
         std::string_view keyword = tokens.next();
-        if (line == 1) {
-            if (keyword != "ply" || !tokens.next().empty()) {
-                fail_line(file, 1, "not a PLY file: the first line must be 'ply'");
-            }
-            continue;
-        }
         if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
         if (keyword == "format") {
             parse_format(tokens, file, line, has_format, header);
@@ -233,10 +231,12 @@ PlyHeader parse_header(std::string_view bytes, const std::string& file) {
             fail_line(file, line, "bad header: unknown keyword " + quoted(keyword));
         }
     }
-    if (line == 0) throw InputError(file + ": empty file, not a PLY file");
     if (!ended) fail_line(file, line, "bad header: no end_header line");
     if (!has_format) fail_line(file, line, "bad header: no format line");
-    header.body_offset = static_cast<size_t>(cur - bytes.data());
+    // After a CR-only `ply` line, a CR LF after end_header is a CR and the body's first byte.
+    const bool body_starts_with_lf = cr_only && lines.line_end() == "\r\n";
+    header.body_offset =
+        static_cast<size_t>(lines.rest() - bytes.data()) - static_cast<size_t>(body_starts_with_lf);
     header.header_lines = line;
     finish_elements(file, line, header);
     return header;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -129,6 +130,35 @@ TEST(LoadObj, AcceptsCrlfTabsRunsOfSpacesAndNoFinalNewline) {
         obj("\xEF\xBB\xBFv  1 2 3\r\n\tv\t4\t5\t6  \r\n  v 7   8 10 \t\r\n\r\nvt 0.5 0.5\r\nf  "
             "1/1\t2/1 3/1 ");
     expect_same_mesh(plain, messy);
+}
+
+TEST(LoadObj, ReadsLfCrlfAndCrLineEndsAlike) {
+    const char* const lines[] = {"v 0 0 0",         "vt 0.5 0.25", "v 2 0 0",       "",
+                                 "# comment",       "v 0 3 0",     "f 1/1 2/1 3/1", "v 0 0 4",
+                                 "f -4/1 -2/1 -1/1"};
+    std::string lf, crlf, cr, mixed;
+    const char* const mixed_ends[] = {"\n", "\r", "\r\n"};
+    for (size_t i = 0; i < std::size(lines); ++i) {
+        lf += std::string(lines[i]) + "\n";
+        crlf += std::string(lines[i]) + "\r\n";
+        cr += std::string(lines[i]) + "\r";
+        mixed += std::string(lines[i]) + mixed_ends[i % 3];
+    }
+    for (const std::string& text : {lf, crlf, cr, mixed}) {
+        Mesh m = obj(text);
+        ASSERT_EQ(m.positions.size(), 4u);
+        EXPECT_EQ(m.positions[1], vec3(2, 0, 0));
+        EXPECT_EQ(m.positions[3], vec3(0, 0, 4));
+        ASSERT_EQ(m.uvs.size(), 1u);
+        EXPECT_EQ(m.uvs[0], vec2(0.5f, 0.25f));
+        expect_triangles(m.tris, {{0, 1, 2}, {0, 2, 3}});
+        expect_triangles(m.uv_tris, {{0, 0, 0}, {0, 0, 0}});
+    }
+}
+
+TEST(LoadObjErrors, CountsLinesEndedByACrAlone) {
+    expect_obj_error("v 0 0 0\rv 1 0 0\r\rv 0 x 0\r", {"test.obj:4:", "bad number 'x'"});
+    expect_obj_error("v 0 0 0\r\nv 1 0 0\rv 0 1 0\nf 1 2 5\r\n", {"test.obj:4:", "index 5"});
 }
 
 TEST(LoadObj, IgnoresCommentsGroupsMaterialsAndUnknownKeywords) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -276,6 +277,37 @@ TEST(LoadPly, ReadsVerticesStoredAfterTheFaces) {
 TEST(LoadPly, IgnoresBytesAfterTheLastBinaryElement) {
     std::string bytes = write_ply(Format::big, {plain_vertex, plain_face}) + "trailing";
     expect_reference_mesh(ply(bytes), false, false);
+}
+
+TEST(LoadPly, ReadsCrOnlyAndMixedLineEnds) {
+    const std::string lf = write_ply(Format::ascii, {plain_vertex, plain_face});
+    std::string cr = lf;
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    std::string mixed;
+    int n = 0;
+    for (char c : lf) mixed += c != '\n' ? std::string(1, c) : (++n % 2 ? "\r" : "\r\n");
+    for (const std::string& text : {cr, mixed}) expect_reference_mesh(ply(text), false, false);
+}
+
+TEST(LoadPly, StartsABinaryBodyAfterTheHeadersOwnLineEnd) {
+    // A body whose first byte is LF (x of vertex 0 is the float of bits 0x3f80000a): after a
+    // CR-only header it is data, after CR LF and LF headers the same.
+    const float x0 = std::bit_cast<float>(uint32_t{0x3f80000a});
+    for (const char* end : {"\r", "\r\n", "\n"}) {
+        SCOPED_TRACE(end[1] ? "CR LF" : end[0] == '\r' ? "CR" : "LF");
+        std::string header = write_header(Format::little, {plain_vertex, plain_face});
+        std::string ended;
+        for (char c : header) ended += c == '\n' ? std::string(end) : std::string(1, c);
+        std::string bytes = write_ply(Format::little, {plain_vertex, plain_face});
+        bytes.replace(0, header.size(), ended);
+        std::memcpy(&bytes[ended.size()], &x0, 4);
+        ASSERT_EQ(bytes[ended.size()], '\n');
+        Mesh m = ply(bytes);
+        ASSERT_EQ(m.positions.size(), 5u);
+        EXPECT_EQ(m.positions[0], vec3(x0, ref_positions[0].y, ref_positions[0].z));
+        EXPECT_EQ(m.positions[4], ref_positions[4]);
+        EXPECT_EQ(m.tris.size(), ref_tris.size());
+    }
 }
 
 // shipped models -------------------------------------------------------------------------
