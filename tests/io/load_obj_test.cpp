@@ -161,6 +161,29 @@ TEST(LoadObjErrors, CountsLinesEndedByACrAlone) {
     expect_obj_error("v 0 0 0\r\nv 1 0 0\rv 0 1 0\nf 1 2 5\r\n", {"test.obj:4:", "index 5"});
 }
 
+TEST(LoadObj, ReadsCornersWithAnEmptyTextureOrNormalIndex) {
+    const std::string base = four_vertices;
+    for (const char* face : {"f 1/ 2/ 3/\n", "f 1// 2// 3//\n", "f 1/ 2// 3\n"}) {
+        SCOPED_TRACE(face);
+        Mesh m = obj(base + face);
+        expect_triangles(m.tris, {{0, 1, 2}});
+        EXPECT_TRUE(m.uv_tris.empty());
+        EXPECT_TRUE(m.normal_tris.empty());
+    }
+    Mesh uv = obj(base + "f 1/4/ 2/3/ 3/2/\n");
+    expect_triangles(uv.tris, {{0, 1, 2}});
+    expect_triangles(uv.uv_tris, {{3, 2, 1}});
+    EXPECT_TRUE(uv.normal_tris.empty());
+    // an empty index is still one form: `v` and `v//vn` do not mix
+    expect_obj_error(base + "f 1// 2//2 3//3\n", {"test.obj:13:", "mixes index forms v and v//vn"});
+}
+
+TEST(LoadObj, AcceptsABareUsemtl) {
+    Mesh m = obj("usemtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl \t\r\nf 1 2 3\nusemtl red\n");
+    EXPECT_EQ(m.positions.size(), 3u);
+    expect_triangles(m.tris, {{0, 1, 2}});
+}
+
 TEST(LoadObj, IgnoresCommentsGroupsMaterialsAndUnknownKeywords) {
     Mesh m =
         obj("# header comment\nmtllib box.mtl\no box\ng side\ns 1\ns off\nusemtl red paint\n"
@@ -337,7 +360,8 @@ TEST(LoadObjErrors, RejectsAFaceMixingIndexForms) {
 }
 
 TEST(LoadObjErrors, RejectsMalformedCornersAndLines) {
-    expect_obj_error("v 0 0 0\nf 1/ 1 1\n", {"test.obj:2:", "bad face corner"});
+    expect_obj_error("v 0 0 0\nf 1/x 1 1\n", {"test.obj:2:", "bad face corner", "'1/x'"});
+    expect_obj_error("v 0 0 0\nf 1/1/1/ 1 1\n", {"test.obj:2:", "bad face corner", "'1/1/1/'"});
     expect_obj_error("v 0 0 0\nf 1 1 1x\n", {"test.obj:2:", "bad face corner", "'1x'"});
     expect_obj_error("v 0 0 0\n3 4 5\n", {"test.obj:2:", "expected a keyword"});
     expect_obj_error("v 0 0 0\n\x01\x02\n", {"test.obj:2:", "expected a keyword", "\\x01"});
