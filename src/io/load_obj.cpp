@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "io/drop_degenerate.h"
+#include "io/gzip_file.h"
 #include "io/read_file.h"
 #include "io/text_lines.h"
 
@@ -291,6 +292,8 @@ Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_err
     return mesh;
 }
 
-Mesh load_obj(const std::string& path) { return load_obj_from_memory(map_file(path).view(), path); }
+Mesh load_obj(const std::string& path) {
+    return load_obj_from_memory(read_model_file(path).view(), path);
+}
 
 }  // namespace raylane

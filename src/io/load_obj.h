@@ -8,14 +8,16 @@
 
 namespace raylane {
 
-/// Reads an OBJ file into a Mesh (positions, normals, uvs with their own index triples).
+/// Reads an OBJ file into a Mesh (positions, normals, uvs with their own index triples); a
+/// name ending in .gz is a gzip-compressed file, decompressed into memory first (gzip_file.h),
+/// and line numbers in messages count in the decompressed text.
 ///
 /// Accepted: `v x y z [w | r g b]`, `vt u [v [w]]`, `vn x y z`, and `f` in every index form
 /// (`v`, `v/vt`, `v//vn`, `v/vt/vn`) with positive or negative (relative) indices; an index
 /// left empty is absent, as common readers take it (`7/` and `7//` are the form `v`, `7/2/` is
-/// `v/vt`); polygons are split into a fan (c0, ci, ci+1). Faces may refer to vertices defined later in the
-/// file. LF, CR LF or CR-only line ends (mixed too), tabs and runs of spaces between tokens, a
-/// UTF-8 byte order mark, `#` comments (also after the values of a line) and a missing final
+/// `v/vt`); polygons are split into a fan (c0, ci, ci+1). Faces may refer to vertices defined later
+/// in the file. LF, CR LF or CR-only line ends (mixed too), tabs and runs of spaces between tokens,
+/// a UTF-8 byte order mark, `#` comments (also after the values of a line) and a missing final
 /// newline are fine.
 ///
 /// Ignored: `o g s usemtl mtllib l p` and any other keyword (`vp`, `curv`, ...), i.e. any

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "io/drop_degenerate.h"
+#include "io/gzip_file.h"
 #include "io/ply_header.h"
 #include "io/read_file.h"
 #include "io/text_lines.h"
@@ -462,6 +463,8 @@ Mesh load_ply_from_memory(std::string_view bytes, const std::string& name_for_er
     return mesh;
 }
 
-Mesh load_ply(const std::string& path) { return load_ply_from_memory(map_file(path).view(), path); }
+Mesh load_ply(const std::string& path) {
+    return load_ply_from_memory(read_model_file(path).view(), path);
+}
 
 }  // namespace raylane

@@ -8,7 +8,9 @@
 
 namespace raylane {
 
-/// Reads a PLY 1.0 file: `ascii`, `binary_little_endian` or `binary_big_endian`.
+/// Reads a PLY 1.0 file: `ascii`, `binary_little_endian` or `binary_big_endian`. A name ending
+/// in .gz is a gzip-compressed file, decompressed into memory first (gzip_file.h); line and
+/// byte numbers in messages count in the decompressed bytes.
 ///
 /// Header lines: format, element, property, comment, obj_info, end_header (blank lines are
 /// skipped). Property types: char uchar short ushort int uint float double and their sized
