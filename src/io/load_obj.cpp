@@ -12,6 +12,7 @@
 #include "io/drop_degenerate.h"
 #include "io/gzip_file.h"
 #include "io/read_file.h"
+#include "io/text_form.h"
 #include "io/text_lines.h"
 
 namespace raylane {
@@ -268,6 +269,7 @@ struct ObjReader {
 Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_errors) {
     Mesh mesh;
     mesh.name = file_name_of(name_for_errors);
+    refuse_non_text(text, name_for_errors, "OBJ");
     ObjReader reader(name_for_errors, mesh);
     if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
     LineCursor lines(text);

@@ -27,6 +27,10 @@ namespace raylane {
 /// Normals and uvs are kept only when every face has them: if some faces lack `vn` (or `vt`)
 /// the mesh gets no normals (or uvs) at all, and normal_tris / uv_tris are empty.
 ///
+/// Refused before parsing, with one line that says what the file is (text_form.h): an empty
+/// file ("file: is empty"), UTF-16 text, gzip data under a name without .gz, and a binary file
+/// ("file: is a binary file, not a text OBJ (byte N is 0xNN)").
+///
 /// Errors (InputError "file:line: reason"): a line starting with anything but a keyword,
 /// `#` or whitespace; a bad or missing number; NaN or infinite values; index 0; an index
 /// out of range (reported on the line of the first face using it); a face with fewer than 3

@@ -29,11 +29,12 @@ namespace raylane {
 /// anything is allocated for it.
 ///
 /// Errors (InputError "file:line: reason" in the header and in ASCII bodies, "file: byte N:
-/// reason" in binary bodies): missing magic, unknown header line, unsupported format or
-/// version, missing x/y/z or vertex_indices, counts the file cannot hold, truncated body,
-/// too few or too many values on an ASCII line, bad or out-of-range numbers, NaN or infinite
-/// vertex attributes, negative list count, face with fewer than 3 vertices, vertex index out
-/// of range, a file without faces.
+/// reason" in binary bodies): an empty file ("file: is empty"); UTF-16 text or gzip data under
+/// a name without .gz, said as such (text_form.h); otherwise a missing magic, unknown header line,
+/// unsupported format or version, missing x/y/z or vertex_indices, counts the file cannot hold,
+/// truncated body, too few or too many values on an ASCII line, bad or out-of-range numbers, NaN or
+/// infinite vertex attributes, negative list count, face with fewer than 3 vertices, vertex index
+/// out of range, a file without faces.
 Mesh load_ply(const std::string& path);
 
 /// Same as load_ply on bytes already in memory; `name_for_errors` prefixes messages and gives

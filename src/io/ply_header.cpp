@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "io/read_file.h"
+#include "io/text_form.h"
 #include "io/text_lines.h"
 
 namespace raylane::ply {
@@ -186,6 +187,15 @@ void finish_elements(const std::string& file, size_t line, PlyHeader& header) {
     if (header.face_element == SIZE_MAX) fail_line(file, line, "no 'face' element in the header");
 }
 
+/// The first line, `ply`; when it is not, what the file is instead, if it is something else.
+void check_magic(std::string_view first_line, std::string_view bytes, const std::string& file) {
+    Tokens tokens{first_line.data(), first_line.data() + first_line.size()};
+    if (tokens.next() == "ply" && tokens.next().empty()) return;
+    refuse_utf16(bytes, file);
+    refuse_gzip(bytes, file);
+    fail_line(file, 1, "not a PLY file: the first line must be 'ply'");
+}
+
 }  // namespace
 
 [[noreturn]] void fail_line(const std::string& file, size_t line, const std::string& reason) {
@@ -199,15 +209,12 @@ void finish_elements(const std::string& file, size_t line, PlyHeader& header) {
 std::string quoted(std::string_view text) { return quote_for_error(text); }
 
 PlyHeader parse_header(std::string_view bytes, const std::string& file) {
-    if (bytes.empty()) throw InputError(file + ": empty file, not a PLY file");
+    refuse_empty(bytes, file);
     PlyHeader header;
     LineCursor lines(bytes);
     std::string_view text;
     lines.next(text);
-    Tokens first{text.data(), text.data() + text.size()};
-    if (first.next() != "ply" || !first.next().empty()) {
-        fail_line(file, 1, "not a PLY file: the first line must be 'ply'");
-    }
+    check_magic(text, bytes, file);
     const bool cr_only = lines.line_end() == "\r";
     size_t line = 1;
     bool has_format = false;

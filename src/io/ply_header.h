@@ -118,9 +118,11 @@ struct Tokens {
 std::string quoted(std::string_view text);
 
 /// The header of `bytes`, checked: its elements and properties, the roles of the vertex and face
-/// properties, each element's smallest record, and where the body starts. The header's lines
-/// may end in LF, CR LF or CR; the body starts after the end of the `end_header` line, read as
-/// the `ply` line ends (so a binary body after a CR-only header may start with an LF byte).
+/// properties, each element's smallest record, and where the body starts. Refuses an empty
+/// file; when the first line is not `ply`, says whether the file is UTF-16 text or gzip data
+/// under a plain name (text_form.h). The header's lines may end in LF, CR LF or CR; the body starts
+/// after the end of the `end_header` line, read as the `ply` line ends (so a binary body after a
+/// CR-only header may start with an LF byte).
 PlyHeader parse_header(std::string_view bytes, const std::string& file);
 
 }  // namespace raylane::ply

@@ -189,13 +189,14 @@ TEST(InflateFileErrors, SaysWhatFollowsTheGzipDataIsNotGzip) {
                   std::to_string(packed.size()));
 }
 
-TEST(InflateFileErrors, SaysAnEmptyGzipFileIsEmpty) {
+TEST(InflateFileErrors, SaysAnEmptyGzipFileOrContentIsEmpty) {
     test::TempDir dir("raylane_gzip_");
     const std::string path = (dir.path / "empty.obj.gz").string();
     test::write_bytes(path, "");
     EXPECT_EQ(test::input_error_of([&] { load_mesh(path); }), path + ": is empty");
     test::write_bytes(path, test::gzip(""));
     EXPECT_TRUE(inflate_file(path).view().empty());
+    EXPECT_EQ(test::input_error_of([&] { load_mesh(path); }), path + ": is empty");
 }
 
 TEST(InflateFileErrors, RefusesMoreThanTheLimitOnceDecompressed) {

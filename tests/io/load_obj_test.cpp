@@ -15,7 +15,9 @@
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/load_ply.h"
+#include "support/gzip.h"
 #include "support/input_error.h"
+#include "support/temp_dir.h"
 
 namespace raylane {
 namespace {
@@ -370,7 +372,7 @@ TEST(LoadObjErrors, RejectsMalformedCornersAndLines) {
 
 TEST(LoadObjErrors, RejectsAFileWithoutFaces) {
     expect_obj_error("v 0 0 0\n# nothing else\n", {"test.obj", "no faces"});
-    expect_obj_error("", {"test.obj", "no faces"});
+    expect_obj_error("\n\r\n", {"test.obj", "no faces"});
 }
 
 TEST(LoadObjErrors, NamesAMissingFile) {
@@ -410,6 +412,44 @@ TEST(LoadObjErrors, LoadMeshRefusesAFileOver2GiBBeforeReadingIt) {
     const std::string message = test::input_error_of([&] { load_mesh(path); });
     fs::remove(path);
     EXPECT_EQ(message, path + ": file is 2147483649 bytes, over the limit of 2^31 for a mesh");
+}
+
+TEST(LoadObjErrors, SaysAnEmptyFileIsEmpty) {
+    EXPECT_EQ(test::input_error_of([] { obj(""); }), "test.obj: is empty");
+    test::TempDir dir("raylane_obj_");
+    const std::string path = (dir.path / "empty.obj").string();
+    test::write_bytes(path, "");
+    EXPECT_EQ(test::input_error_of([&] { load_mesh(path); }), path + ": is empty");
+}
+
+TEST(LoadObjErrors, SaysAUtf16FileIsUtf16) {
+    const std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::string little = "\xFF\xFE";
+    std::string big = "\xFE\xFF";
+    std::string unmarked;
+    for (char c : text) {
+        little += std::string{c, '\0'};
+        big += std::string{'\0', c};
+        unmarked += std::string{c, '\0'};
+    }
+    for (const std::string& bytes : {little, big, unmarked}) {
+        EXPECT_EQ(test::input_error_of([&] { obj(bytes); }),
+                  "test.obj: is UTF-16 text; save it as UTF-8 or ASCII");
+    }
+}
+
+TEST(LoadObjErrors, SaysABinaryFileIsNotATextObj) {
+    std::string bytes = "v 0 0 0\nv 1 0 0\n";
+    bytes += std::string("\x7f\x45\x4c\x46\x02\x01\x01\x00", 8);  // an ELF header
+    EXPECT_EQ(test::input_error_of([&] { obj(bytes); }),
+              "test.obj: is a binary file, not a text OBJ (byte 23 is 0x00)");
+    std::string controls = "v 0 0 0\n";
+    for (int i = 0; i < 16; ++i) controls += static_cast<char>(1 + i % 8);
+    EXPECT_EQ(test::input_error_of([&] { obj(controls); }),
+              "test.obj: is a binary file, not a text OBJ (byte 23 is 0x08)");
+    // gzip data under a plain name
+    EXPECT_EQ(test::input_error_of([&] { obj(test::gzip("v 0 0 0\n")); }),
+              "test.obj: is gzip-compressed; name it test.obj.gz to read it");
 }
 
 // hostile input --------------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "support/gzip.h"
 #include "support/input_error.h"
 
 namespace raylane {
@@ -501,6 +502,25 @@ TEST(LoadPlyErrors, ReportsTheLineOfBadAsciiValues) {
                      {"test.ply:14:", "after the last element"});
     expect_ply_error(ascii_header + "0 0 nan\n1 0 0\n0 1 0\n3 0 1 2\n",
                      {"test.ply:10:", "not a finite float"});
+}
+
+TEST(LoadPlyErrors, SaysAnEmptyFileIsEmpty) {
+    EXPECT_EQ(test::input_error_of([] { ply(""); }), "test.ply: is empty");
+}
+
+TEST(LoadPlyErrors, SaysAUtf16FileIsUtf16) {
+    std::string little = "\xFF\xFE";
+    std::string unmarked;
+    for (char c : ascii_header) {
+        little += std::string{c, '\0'};
+        unmarked += std::string{'\0', c};
+    }
+    for (const std::string& bytes : {little, unmarked}) {
+        EXPECT_EQ(test::input_error_of([&] { ply(bytes); }),
+                  "test.ply: is UTF-16 text; save it as UTF-8 or ASCII");
+    }
+    EXPECT_EQ(test::input_error_of([&] { ply(test::gzip(ascii_header)); }),
+              "test.ply: is gzip-compressed; name it test.ply.gz to read it");
 }
 
 TEST(LoadPlyErrors, RejectsNonFiniteBinaryVertices) {
