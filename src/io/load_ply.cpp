@@ -52,16 +52,16 @@ struct PlyReader {
         return true;
     }
 
-    /// Sizes the mesh arrays for an element whose count has been checked against the file.
-    void begin_element(size_t index) {
-        const PlyElement& e = header.elements[index];
+    /// Sizes the mesh arrays for `records` records of an element, a number the file has been
+    /// found to hold (its count, or fewer when the file ends early).
+    void begin_element(size_t index, uint64_t records) {
         if (index == header.vertex_element) {
-            auto n = static_cast<size_t>(e.count);
+            auto n = static_cast<size_t>(records);
             mesh.positions.resize(n);
             if (header.has_normals) mesh.normals.resize(n);
             if (header.has_uvs) mesh.uvs.resize(n);
         } else if (index == header.face_element) {
-            mesh.tris.reserve(static_cast<size_t>(e.count));
+            mesh.tris.reserve(static_cast<size_t>(records));
         }
     }
 
@@ -77,6 +77,18 @@ struct PlyReader {
         if (index < 0) return "negative vertex index " + std::to_string(index);
         return "vertex index " + std::to_string(index) + " out of range (" +
                std::to_string(vertex_count()) + " vertices)";
+    }
+
+    /// "ends after K of N vertices" ("faces", "'edge' records"): the file held K whole records
+    /// of the N the header promised for `e`.
+    static std::string ended_after(const PlyElement& e, uint64_t whole) {
+        const bool one = e.count == 1;
+        const std::string noun = e.name == "vertex" ? (one ? "vertex" : "vertices")
+                                 : e.name == "face"
+                                     ? (one ? "face" : "faces")
+                                     : quoted(e.name) + (one ? " record" : " records");
+        return "ends after " + std::to_string(whole) + " of " + std::to_string(e.count) + " " +
+               noun;
     }
 
     std::string count_error(const PlyElement& e, const PlyProperty& prop, long long count) const {
@@ -215,18 +227,14 @@ struct PlyReader {
     const unsigned char* read_record(size_t element, size_t record, const unsigned char* p,
                                      const unsigned char* end) {
         const PlyElement& e = header.elements[element];
-        auto need = [&](size_t n, const char* what) {
-            if (static_cast<size_t>(end - p) < n) {
-                fail_byte(file, offset_of(p),
-                          "file truncated: " + std::string(what) + " of " + quoted(e.name) +
-                              " record " + std::to_string(record) + " needs " + std::to_string(n) +
-                              " bytes, " + std::to_string(end - p) + " remain");
-            }
+        auto need = [&](size_t n) {
+            if (static_cast<size_t>(end - p) < n)
+                fail_byte(file, bytes.size(), ended_after(e, record));
         };
         for (const PlyProperty& prop : e.props) {
             const size_t item = type_size(prop.type);
             if (!prop.is_list()) {
-                need(item, "a property");
+                need(item);
                 if (prop.role < role_count &&
                     !store(prop.role, record, load_number<Swap>(prop.type, p))) {
                     fail_byte(
@@ -236,7 +244,7 @@ struct PlyReader {
                 p += item;
                 continue;
             }
-            need(type_size(prop.count_type), "a list count");
+            need(type_size(prop.count_type));
             const unsigned char* count_at = p;
             long long count = load_integer<Swap>(prop.count_type, p);
             p += type_size(prop.count_type);
@@ -244,8 +252,9 @@ struct PlyReader {
             if (static_cast<unsigned long long>(count) > static_cast<size_t>(end - p) / item) {
                 fail_byte(file, offset_of(count_at),
                           "list count " + std::to_string(count) + " in " + quoted(prop.name) +
-                              " needs more than the " + std::to_string(end - p) +
-                              " bytes that remain (file truncated?)");
+                              " needs " + std::to_string(count * static_cast<long long>(item)) +
+                              " bytes, but only " + std::to_string(end - p) + " remain: the file " +
+                              ended_after(e, record));
             }
             if (prop.role != role_indices) {
                 p += static_cast<size_t>(count) * item;
@@ -265,6 +274,34 @@ struct PlyReader {
         return p;
     }
 
+    /// How many records of `e` lie whole between `p` and `end`, up to e.count; every record
+    /// takes at least a byte, so the walk ends within the file. A negative list count is
+    /// reported as reading it would.
+    template <bool Swap>
+    uint64_t count_whole_records(const PlyElement& e, const unsigned char* p,
+                                 const unsigned char* end) const {
+        if (e.fixed_size)
+            return std::min<uint64_t>(e.count, static_cast<size_t>(end - p) / e.min_bytes);
+        for (uint64_t r = 0; r < e.count; ++r) {
+            for (const PlyProperty& prop : e.props) {
+                const size_t size = type_size(prop.is_list() ? prop.count_type : prop.type);
+                if (static_cast<size_t>(end - p) < size) return r;
+                if (!prop.is_list()) {
+                    p += size;
+                    continue;
+                }
+                const long long count = load_integer<Swap>(prop.count_type, p);
+                if (count < 0) fail_byte(file, offset_of(p), count_error(e, prop, count));
+                p += size;
+                const size_t item = type_size(prop.type);
+                if (static_cast<unsigned long long>(count) > static_cast<size_t>(end - p) / item)
+                    return r;
+                p += static_cast<size_t>(count) * item;
+            }
+        }
+        return e.count;
+    }
+
     template <bool Swap>
     void read_binary() {
         const auto* begin = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -272,15 +309,12 @@ struct PlyReader {
         const unsigned char* p = begin + header.body_offset;
         for (size_t ei = 0; ei < header.elements.size(); ++ei) {
             const PlyElement& e = header.elements[ei];
-            const auto remaining = static_cast<size_t>(end - p);
-            if (e.count > remaining / e.min_bytes) {
-                fail_byte(file, offset_of(p),
-                          "file truncated or bad count: element " + quoted(e.name) + " declares " +
-                              std::to_string(e.count) + " records of at least " +
-                              std::to_string(e.min_bytes) + " bytes, but only " +
-                              std::to_string(remaining) + " bytes remain");
+            // Records the file cannot hold are never allocated: the whole ones are counted.
+            if (e.count > static_cast<size_t>(end - p) / e.min_bytes) {
+                const uint64_t whole = count_whole_records<Swap>(e, p, end);
+                if (whole < e.count) fail_byte(file, bytes.size(), ended_after(e, whole));
             }
-            begin_element(ei);
+            begin_element(ei, e.count);
             if (e.fixed_size) {
                 if (ei == header.vertex_element) read_fixed_vertices<Swap>(e, p);
                 p += static_cast<size_t>(e.count) * e.min_bytes;
@@ -312,6 +346,25 @@ struct PlyReader {
             if (is_blank_line(text)) continue;
             tokens = Tokens{text.data(), text.data() + text.size()};
             return true;
+        }
+        return false;
+    }
+
+    /// The non-blank lines after the current one, counted up to `limit` on a copy of the cursor.
+    uint64_t count_lines_left(uint64_t limit) const {
+        LineCursor rest = lines;
+        uint64_t records = 0;
+        for (std::string_view text; records < limit && rest.next(text);) {
+            records += is_blank_line(text) ? 0 : 1;
+        }
+        return records;
+    }
+
+    /// Whether records are promised after record `r` of element `ei`.
+    bool promised_after(size_t ei, size_t r) const {
+        if (r + 1 < header.elements[ei].count) return true;
+        for (size_t later = ei + 1; later < header.elements.size(); ++later) {
+            if (header.elements[later].count > 0) return true;
         }
         return false;
     }
@@ -410,26 +463,30 @@ struct PlyReader {
         }
     }
 
+    /// Whether the current line is the file's last and has no end while more records are
+    /// promised: the file was cut there, and the line is no whole record, whatever it holds.
+    bool at_cut_line(size_t ei, size_t r) {
+        return lines.rest() == bytes.data() + bytes.size() && lines.line_end().empty() &&
+               promised_after(ei, r);
+    }
+
     void read_ascii() {
         lines = LineCursor(bytes.substr(header.body_offset));
         line = header.header_lines;
         for (size_t ei = 0; ei < header.elements.size(); ++ei) {
             const PlyElement& e = header.elements[ei];
-            // Every value takes a character and a separator (the last one may lack it).
+            // Every value takes a character and a separator (the last one may lack it). Records
+            // the file cannot hold are never allocated: its lines are counted.
+            uint64_t records = e.count;
             const auto remaining = static_cast<size_t>(bytes.data() + bytes.size() - lines.rest());
             if (e.count > (remaining + 1) / (2 * e.min_ascii_values)) {
-                fail_line(file, line + 1,
-                          "file truncated or bad count: element " + quoted(e.name) + " declares " +
-                              std::to_string(e.count) + " records of at least " +
-                              std::to_string(e.min_ascii_values) + " values, but only " +
-                              std::to_string(remaining) + " bytes remain");
+                records = count_lines_left(e.count);
             }
-            begin_element(ei);
+            begin_element(ei, records);
             for (size_t r = 0; r < e.count; ++r) {
-                if (!next_line()) {
-                    fail_here("unexpected end of file: element " + quoted(e.name) + " has " +
-                              std::to_string(r) + " of " + std::to_string(e.count) + " records");
-                }
+                if (!next_line()) fail_here(ended_after(e, r));  // (r == records when fewer)
+                if (at_cut_line(ei, r))
+                    fail_here(ended_after(e, r) + " (the last line is cut short)");
                 read_ascii_record(ei, r);
             }
         }
