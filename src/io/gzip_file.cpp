@@ -50,7 +50,7 @@ class GzipInput {
     ~GzipInput() { ::close(fd_); }
 
     /// The decompressed size the gzip trailer gives (its last 4 bytes, little endian, modulo
-    /// 2^32), bounded by deflate's largest expansion of the file; 0 when the file is no
+    /// 2^32), bounded by deflate's largest expansion of the file; 0 when the file is not a
     /// regular file or is too short to hold a trailer.
     uint64_t size_hint() const {
         struct stat info {};

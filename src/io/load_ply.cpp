@@ -465,7 +465,7 @@ struct PlyReader {
 
     /// Whether the current line is the file's last and has no end while more records are
     /// promised: the file was cut there, and the line is no whole record, whatever it holds.
-    bool at_cut_line(size_t ei, size_t r) {
+    bool at_cut_line(size_t ei, size_t r) const {
         return lines.rest() == bytes.data() + bytes.size() && lines.line_end().empty() &&
                promised_after(ei, r);
     }
