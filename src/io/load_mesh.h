@@ -11,10 +11,11 @@ namespace raylane {
 /// Largest mesh file read (bytes, 2 GiB): a bigger file is refused before it is mapped.
 inline constexpr int64_t max_mesh_file_bytes = int64_t{1} << 31;
 
-/// load_obj for ".obj", load_ply for ".ply" (extension compared case-insensitively).
-/// A file over max_mesh_file_bytes throws InputError "path: file is N bytes, over the limit of
-/// 2^31 for a mesh" before anything is read; any other extension "path: unsupported mesh
-/// format ...".
+/// load_obj for ".obj" and ".obj.gz", load_ply for ".ply" and ".ply.gz" (extensions compared
+/// case-insensitively; .gz files are gzip-compressed, gzip_file.h). A file over
+/// max_mesh_file_bytes throws InputError "path: file is N bytes, over the limit of 2^31 for a
+/// mesh" before anything is read (for .gz files the decompressed bytes have the same limit); any
+/// other extension "path: unsupported mesh format ...".
 Mesh load_mesh(const std::string& path);
 
 }  // namespace raylane

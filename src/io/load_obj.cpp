@@ -6,12 +6,14 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "core/error.h"
 #include "io/drop_degenerate.h"
+#include "io/gzip_file.h"
 #include "io/read_file.h"
+#include "io/text_form.h"
+#include "io/text_lines.h"
 
 namespace raylane {
 
@@ -50,8 +52,9 @@ struct ObjReader {
     std::vector<ForwardRef> forward_refs;
     size_t faces_without_uv = 0;
     size_t faces_without_normal = 0;
-    /// Name from the last `usemtl` line. TODO(#mtl): give each triangle a material id once the
-    /// MTL reader lands; `mtllib` names would be collected in parse_line the same way.
+    /// Name from the last `usemtl` line ("" after a bare one). TODO(#mtl): give each triangle a
+    /// material id once the MTL reader lands; `mtllib` names would be collected in parse_line
+    /// the same way.
     std::string_view material;
 
     [[noreturn]] void fail(const std::string& reason) const {
@@ -152,32 +155,39 @@ struct ObjReader {
         mesh.normals.push_back(n);
     }
 
+    bool at_index() const { return p < end && (is_digit(*p) || *p == '-' || *p == '+'); }
+
+    /// One face corner `v`, `v/vt`, `v//vn` or `v/vt/vn` into `corner`; returns its index form
+    /// (form_name). An index left empty (`7/`, `7//`, `7/2/`) is absent, as common readers take
+    /// it: `7/` and `7//` are the form `v`, `7/2/` the form `v/vt`.
+    int read_corner(uvec3& corner) {
+        const char* start = p;
+        int form = 0;
+        corner.x = read_index(attr_position, start);
+        if (p < end && *p == '/') {
+            ++p;
+            if (at_index()) {
+                corner.y = read_index(attr_uv, start);
+                form |= 1;
+            }
+            if (p < end && *p == '/') {
+                ++p;
+                if (at_index()) {
+                    corner.z = read_index(attr_normal, start);
+                    form |= 2;
+                }
+            }
+        }
+        if (p < end && !is_blank(*p)) fail("bad face corner " + quote_for_error(token_at(start)));
+        return form;
+    }
+
     void parse_face() {
         corners.clear();
         int form = -1;
         while (!at_end_of_values()) {
-            const char* start = p;
             uvec3 corner{0u};
-            int corner_form = 0;
-            corner.x = read_index(attr_position, start);
-            if (p < end && *p == '/') {
-                ++p;
-                if (p < end && *p == '/') {
-                    ++p;
-                    corner.z = read_index(attr_normal, start);
-                    corner_form = 2;
-                } else {
-                    corner.y = read_index(attr_uv, start);
-                    corner_form = 1;
-                    if (p < end && *p == '/') {
-                        ++p;
-                        corner.z = read_index(attr_normal, start);
-                        corner_form = 3;
-                    }
-                }
-            }
-            if (p < end && !is_blank(*p))
-                fail("bad face corner " + quote_for_error(token_at(start)));
+            const int corner_form = read_corner(corner);
             if (form < 0) {
                 form = corner_form;
             } else if (corner_form != form) {
@@ -226,13 +236,17 @@ struct ObjReader {
         } else if (keyword == "vn") {
             parse_normal();
         } else if (keyword == "usemtl") {
-            skip_blanks();
-            const char* name_end = end;
-            while (name_end > p && is_blank(name_end[-1])) --name_end;
-            if (name_end == p) fail("usemtl without a material name");
-            material = std::string_view(p, static_cast<size_t>(name_end - p));
+            parse_usemtl();
         }
         // o g s mtllib l p and all other keywords: accepted and ignored.
+    }
+
+    /// `usemtl name`, or a bare `usemtl`: back to the default material (an empty name).
+    void parse_usemtl() {
+        skip_blanks();
+        const char* name_end = end;
+        while (name_end > p && is_blank(name_end[-1])) --name_end;
+        material = std::string_view(p, static_cast<size_t>(name_end - p));
     }
 
     void check_forward_refs() {
@@ -255,18 +269,15 @@ struct ObjReader {
 Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_errors) {
     Mesh mesh;
     mesh.name = file_name_of(name_for_errors);
+    refuse_non_text(text, name_for_errors, "OBJ");
     ObjReader reader(name_for_errors, mesh);
-    const char* cur = text.data();
-    const char* text_end = text.data() + text.size();
-    if (text.size() >= 3 && std::memcmp(cur, "\xEF\xBB\xBF", 3) == 0) cur += 3;
-    while (cur < text_end) {
-        const void* newline = std::memchr(cur, '\n', static_cast<size_t>(text_end - cur));
-        const char* line_end = newline ? static_cast<const char*>(newline) : text_end;
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
+    LineCursor lines(text);
+    for (std::string_view line; lines.next(line);) {
         ++reader.line;
-        reader.p = cur;
-        reader.end = line_end;
+        reader.p = line.data();
+        reader.end = line.data() + line.size();
         reader.parse_line();
-        cur = newline ? line_end + 1 : text_end;
     }
     reader.check_forward_refs();
     if (mesh.tris.empty()) throw InputError(name_for_errors + ": no faces ('f' lines)");
@@ -283,6 +294,8 @@ Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_err
     return mesh;
 }
 
-Mesh load_obj(const std::string& path) { return load_obj_from_memory(map_file(path).view(), path); }
+Mesh load_obj(const std::string& path) {
+    return load_obj_from_memory(read_model_file(path).view(), path);
+}
 
 }  // namespace raylane

@@ -1,5 +1,5 @@
-// io: PLY reader (load_ply.h): header, then ASCII or binary body from the file held in memory.
-// Sibling of load_obj.cpp.
+// io: PLY reader (load_ply.h): the body, ASCII or binary, from the file held in memory, as the
+// header (ply_header.h) describes it. Sibling of load_obj.cpp.
 #include "io/load_ply.h"
 
 #include <bit>
@@ -8,343 +8,20 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <iterator>
 #include <vector>
 
 #include "core/error.h"
 #include "io/drop_degenerate.h"
+#include "io/gzip_file.h"
+#include "io/ply_header.h"
 #include "io/read_file.h"
+#include "io/text_lines.h"
 
 namespace raylane {
 
 namespace {
 
-// header ---------------------------------------------------------------------------------
-
-enum class PlyType : uint8_t { invalid, i8, u8, i16, u16, i32, u32, f32, f64 };
-
-/// Names, size in bytes and (integer types) value range, indexed by PlyType.
-struct TypeInfo {
-    std::string_view name;
-    std::string_view sized_name;
-    size_t size;
-    long long lo;
-    long long hi;
-};
-constexpr TypeInfo type_info[] = {
-    {"?", "?", 0, 0, 0},
-    {"char", "int8", 1, INT8_MIN, INT8_MAX},
-    {"uchar", "uint8", 1, 0, UINT8_MAX},
-    {"short", "int16", 2, INT16_MIN, INT16_MAX},
-    {"ushort", "uint16", 2, 0, UINT16_MAX},
-    {"int", "int32", 4, INT32_MIN, INT32_MAX},
-    {"uint", "uint32", 4, 0, UINT32_MAX},
-    {"float", "float32", 4, 0, 0},
-    {"double", "float64", 8, 0, 0},
-};
-
-const TypeInfo& info(PlyType t) { return type_info[static_cast<size_t>(t)]; }
-size_t type_size(PlyType t) { return info(t).size; }
-bool is_integer(PlyType t) { return t != PlyType::f32 && t != PlyType::f64; }
-
-PlyType parse_type(std::string_view name) {
-    for (size_t i = 1; i < std::size(type_info); ++i) {
-        if (type_info[i].name == name || type_info[i].sized_name == name) {
-            return static_cast<PlyType>(i);
-        }
-    }
-    return PlyType::invalid;
-}
-
-/// Whether an ASCII integer fits the declared type (always true for float types).
-bool fits_type(long long v, PlyType t) {
-    return !is_integer(t) || (v >= info(t).lo && v <= info(t).hi);
-}
-
-/// What a property feeds in the Mesh; the first role_count roles are vertex attributes.
-enum Role : uint8_t {
-    role_x,
-    role_y,
-    role_z,
-    role_nx,
-    role_ny,
-    role_nz,
-    role_u,
-    role_v,
-    role_none,
-    role_indices
-};
-constexpr int role_count = role_none;
-constexpr const char* role_name[role_count] = {"x", "y", "z", "nx", "ny", "nz", "u", "v"};
-
-struct PlyProperty {
-    std::string_view name;
-    PlyType type = PlyType::invalid;        ///< scalar type, or the item type of a list
-    PlyType count_type = PlyType::invalid;  ///< invalid for scalars
-    Role role = role_none;
-    bool is_list() const { return count_type != PlyType::invalid; }
-};
-
-struct PlyElement {
-    std::string_view name;
-    uint64_t count = 0;
-    size_t line = 0;  ///< header line of the `element` line
-    std::vector<PlyProperty> props;
-    bool fixed_size = true;  ///< no list properties: every record has min_bytes bytes
-    /// Smallest binary record: lists empty, except vertex_indices which needs 3 items.
-    size_t min_bytes = 0;
-    /// Smallest ASCII record, in values: one per property (so that a short face line is
-    /// reported as such rather than as a truncated file).
-    size_t min_ascii_values = 0;
-};
-
-enum class PlyFormat : uint8_t { ascii, binary_little_endian, binary_big_endian };
-
-struct PlyHeader {
-    PlyFormat format = PlyFormat::ascii;
-    std::vector<PlyElement> elements;
-    size_t body_offset = 0;   ///< first byte after the end_header line
-    size_t header_lines = 0;  ///< number of lines up to and including end_header
-    size_t vertex_element = SIZE_MAX;
-    size_t face_element = SIZE_MAX;
-    bool has_normals = false;
-    bool has_uvs = false;
-};
-
-constexpr bool is_blank(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-/// Splits one line into blank-separated tokens, one at a time.
-struct Tokens {
-    const char* p;
-    const char* end;
-    std::string_view next() {
-        while (p < end && is_blank(*p)) ++p;
-        const char* start = p;
-        while (p < end && !is_blank(*p)) ++p;
-        return {start, static_cast<size_t>(p - start)};
-    }
-};
-
-[[noreturn]] void fail_line(const std::string& file, size_t line, const std::string& reason) {
-    throw InputError(file + ":" + std::to_string(line) + ": " + reason);
-}
-
-[[noreturn]] void fail_byte(const std::string& file, size_t offset, const std::string& reason) {
-    throw InputError(file + ": byte " + std::to_string(offset) + ": " + reason);
-}
-
-std::string quoted(std::string_view text) { return quote_for_error(text); }
-
-size_t find_property(const PlyElement& e, std::string_view name) {
-    for (size_t i = 0; i < e.props.size(); ++i) {
-        if (e.props[i].name == name) return i;
-    }
-    return SIZE_MAX;
-}
-
-/// Gives the vertex properties their roles; checks x y z, nx ny nz and the uv pair.
-void assign_vertex_roles(const std::string& file, PlyElement& e, PlyHeader& header) {
-    auto take = [&](std::string_view name, Role role) {
-        size_t i = find_property(e, name);
-        if (i == SIZE_MAX) return false;
-        if (e.props[i].is_list()) {
-            fail_line(file, e.line, "vertex property " + quoted(name) + " must not be a list");
-        }
-        e.props[i].role = role;
-        return true;
-    };
-    for (Role r : {role_x, role_y, role_z}) {
-        if (!take(role_name[r], r)) {
-            fail_line(file, e.line,
-                      std::string("vertex element has no '") + role_name[r] + "' property");
-        }
-    }
-    int normals = int{take("nx", role_nx)} + int{take("ny", role_ny)} + int{take("nz", role_nz)};
-    if (normals != 0 && normals != 3) {
-        fail_line(file, e.line, "vertex element has some but not all of nx ny nz");
-    }
-    header.has_normals = normals == 3;
-    constexpr std::string_view uv_pairs[][2] = {
-        {"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
-    for (const auto& pair : uv_pairs) {
-        bool has_u = find_property(e, pair[0]) != SIZE_MAX;
-        bool has_v = find_property(e, pair[1]) != SIZE_MAX;
-        if (has_u != has_v) {
-            fail_line(file, e.line,
-                      "vertex element has " + quoted(has_u ? pair[0] : pair[1]) + " but no " +
-                          quoted(has_u ? pair[1] : pair[0]));
-        }
-        if (has_u) {
-            take(pair[0], role_u);
-            take(pair[1], role_v);
-            header.has_uvs = true;
-            break;
-        }
-    }
-}
-
-void assign_face_roles(const std::string& file, PlyElement& e) {
-    size_t i = find_property(e, "vertex_indices");
-    if (i == SIZE_MAX) i = find_property(e, "vertex_index");
-    if (i == SIZE_MAX) {
-        fail_line(file, e.line, "face element has no 'vertex_indices' list property");
-    }
-    PlyProperty& prop = e.props[i];
-    if (!prop.is_list())
-        fail_line(file, e.line, "face property " + quoted(prop.name) + " is not a list");
-    if (!is_integer(prop.type)) {
-        fail_line(file, e.line,
-                  "face property " + quoted(prop.name) + " has a non-integer item type");
-    }
-    prop.role = role_indices;
-}
-
-/// `format <ascii | binary_little_endian | binary_big_endian> 1.0`, once.
-void parse_format(Tokens& tokens, const std::string& file, size_t line, bool& has_format,
-                  PlyHeader& header) {
-    std::string_view name = tokens.next();
-    std::string_view version = tokens.next();
-    if (has_format) fail_line(file, line, "second format line");
-    if (name == "ascii") {
-        header.format = PlyFormat::ascii;
-    } else if (name == "binary_little_endian") {
-        header.format = PlyFormat::binary_little_endian;
-    } else if (name == "binary_big_endian") {
-        header.format = PlyFormat::binary_big_endian;
-    } else {
-        fail_line(file, line,
-                  "unsupported format " + quoted(name) +
-                      " (expected ascii, binary_little_endian or "
-                      "binary_big_endian)");
-    }
-    if (version != "1.0") fail_line(file, line, "unsupported PLY version " + quoted(version));
-    if (!tokens.next().empty()) fail_line(file, line, "bad header: extra words after format");
-    has_format = true;
-}
-
-/// `element <name> <count>`; notes which element is the vertex and which the face element.
-void parse_element(Tokens& tokens, const std::string& file, size_t line, PlyHeader& header) {
-    PlyElement e;
-    e.name = tokens.next();
-    std::string_view count = tokens.next();
-    auto [next, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
-    if (e.name.empty() || count.empty() || ec != std::errc() ||
-        next != count.data() + count.size() || !tokens.next().empty()) {
-        fail_line(file, line, "bad header: expected 'element <name> <count>'");
-    }
-    // Only the two elements the reader uses must be unique (and this stays O(n)).
-    if ((e.name == "vertex" && header.vertex_element != SIZE_MAX) ||
-        (e.name == "face" && header.face_element != SIZE_MAX)) {
-        fail_line(file, line, "second element " + quoted(e.name));
-    }
-    if (e.name == "vertex") header.vertex_element = header.elements.size();
-    if (e.name == "face") header.face_element = header.elements.size();
-    e.line = line;
-    header.elements.push_back(std::move(e));
-}
-
-/// `property <type> <name>` or `property list <count type> <item type> <name>`, of the last
-/// element.
-void parse_property(Tokens& tokens, const std::string& file, size_t line, PlyHeader& header) {
-    if (header.elements.empty()) fail_line(file, line, "bad header: property before any element");
-    PlyProperty prop;
-    std::string_view type = tokens.next();
-    if (type == "list") {
-        std::string_view count_type = tokens.next();
-        prop.count_type = parse_type(count_type);
-        if (prop.count_type == PlyType::invalid) {
-            fail_line(file, line, "unknown property type " + quoted(count_type));
-        }
-        if (!is_integer(prop.count_type)) {
-            fail_line(file, line, "list count type must be an integer type");
-        }
-        type = tokens.next();
-    }
-    prop.type = parse_type(type);
-    if (prop.type == PlyType::invalid)
-        fail_line(file, line, "unknown property type " + quoted(type));
-    prop.name = tokens.next();
-    if (prop.name.empty() || !tokens.next().empty()) {
-        fail_line(file, line, "bad header: expected 'property <type> <name>'");
-    }
-    header.elements.back().props.push_back(prop);
-}
-
-/// After the header's last line (`line`): the roles of the vertex and face properties, each
-/// element's smallest record, and the vertex and face elements present.
-void finish_elements(const std::string& file, size_t line, PlyHeader& header) {
-    for (size_t i = 0; i < header.elements.size(); ++i) {
-        PlyElement& e = header.elements[i];
-        if (e.props.empty())
-            fail_line(file, e.line, "element " + quoted(e.name) + " has no properties");
-        if (i == header.vertex_element) {
-            if (e.count > UINT32_MAX)
-                fail_line(file, e.line, "too many vertices for 32-bit indices");
-            assign_vertex_roles(file, e, header);
-        } else if (i == header.face_element) {
-            assign_face_roles(file, e);
-        }
-        for (const PlyProperty& prop : e.props) {
-            size_t min_items = prop.role == role_indices ? 3 : 0;
-            if (prop.is_list()) {
-                e.fixed_size = false;
-                e.min_bytes += type_size(prop.count_type) + min_items * type_size(prop.type);
-            } else {
-                e.min_bytes += type_size(prop.type);
-            }
-            e.min_ascii_values += 1;
-        }
-    }
-    if (header.vertex_element == SIZE_MAX)
-        fail_line(file, line, "no 'vertex' element in the header");
-    if (header.face_element == SIZE_MAX) fail_line(file, line, "no 'face' element in the header");
-}
-
-PlyHeader parse_header(std::string_view bytes, const std::string& file) {
-    PlyHeader header;
-    const char* cur = bytes.data();
-    const char* end = bytes.data() + bytes.size();
-    size_t line = 0;
-    bool has_format = false;
-    bool ended = false;
-    while (cur < end && !ended) {
-        const void* newline = std::memchr(cur, '\n', static_cast<size_t>(end - cur));
-        const char* line_end = newline ? static_cast<const char*>(newline) : end;
-        ++line;
-        Tokens tokens{cur, line_end};
-        cur = newline ? line_end + 1 : end;
-        std::string_view keyword = tokens.next();
-        if (line == 1) {
-            if (keyword != "ply" || !tokens.next().empty()) {
-                fail_line(file, 1, "not a PLY file: the first line must be 'ply'");
-            }
-            continue;
-        }
-        if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
-        if (keyword == "format") {
-            parse_format(tokens, file, line, has_format, header);
-        } else if (keyword == "element") {
-            parse_element(tokens, file, line, header);
-        } else if (keyword == "property") {
-            parse_property(tokens, file, line, header);
-        } else if (keyword == "end_header") {
-            if (!tokens.next().empty())
-                fail_line(file, line, "bad header: extra words after end_header");
-            ended = true;
-        } else {
-            fail_line(file, line, "bad header: unknown keyword " + quoted(keyword));
-        }
-    }
-    if (line == 0) throw InputError(file + ": empty file, not a PLY file");
-    if (!ended) fail_line(file, line, "bad header: no end_header line");
-    if (!has_format) fail_line(file, line, "bad header: no format line");
-    header.body_offset = static_cast<size_t>(cur - bytes.data());
-    header.header_lines = line;
-    finish_elements(file, line, header);
-    return header;
-}
+using namespace ply;  // NOLINT(google-build-using-namespace): the header's vocabulary
 
 // body, shared ---------------------------------------------------------------------------
 
@@ -375,16 +52,16 @@ struct PlyReader {
         return true;
     }
 
-    /// Sizes the mesh arrays for an element whose count has been checked against the file.
-    void begin_element(size_t index) {
-        const PlyElement& e = header.elements[index];
+    /// Sizes the mesh arrays for `records` records of an element, a number the file has been
+    /// found to hold (its count, or fewer when the file ends early).
+    void begin_element(size_t index, uint64_t records) {
         if (index == header.vertex_element) {
-            auto n = static_cast<size_t>(e.count);
+            auto n = static_cast<size_t>(records);
             mesh.positions.resize(n);
             if (header.has_normals) mesh.normals.resize(n);
             if (header.has_uvs) mesh.uvs.resize(n);
         } else if (index == header.face_element) {
-            mesh.tris.reserve(static_cast<size_t>(e.count));
+            mesh.tris.reserve(static_cast<size_t>(records));
         }
     }
 
@@ -400,6 +77,18 @@ struct PlyReader {
         if (index < 0) return "negative vertex index " + std::to_string(index);
         return "vertex index " + std::to_string(index) + " out of range (" +
                std::to_string(vertex_count()) + " vertices)";
+    }
+
+    /// "ends after K of N vertices" ("faces", "'edge' records"): the file held K whole records
+    /// of the N the header promised for `e`.
+    static std::string ended_after(const PlyElement& e, uint64_t whole) {
+        const bool one = e.count == 1;
+        const std::string noun = e.name == "vertex" ? (one ? "vertex" : "vertices")
+                                 : e.name == "face"
+                                     ? (one ? "face" : "faces")
+                                     : quoted(e.name) + (one ? " record" : " records");
+        return "ends after " + std::to_string(whole) + " of " + std::to_string(e.count) + " " +
+               noun;
     }
 
     std::string count_error(const PlyElement& e, const PlyProperty& prop, long long count) const {
@@ -538,18 +227,14 @@ struct PlyReader {
     const unsigned char* read_record(size_t element, size_t record, const unsigned char* p,
                                      const unsigned char* end) {
         const PlyElement& e = header.elements[element];
-        auto need = [&](size_t n, const char* what) {
-            if (static_cast<size_t>(end - p) < n) {
-                fail_byte(file, offset_of(p),
-                          "file truncated: " + std::string(what) + " of " + quoted(e.name) +
-                              " record " + std::to_string(record) + " needs " + std::to_string(n) +
-                              " bytes, " + std::to_string(end - p) + " remain");
-            }
+        auto need = [&](size_t n) {
+            if (static_cast<size_t>(end - p) < n)
+                fail_byte(file, bytes.size(), ended_after(e, record));
         };
         for (const PlyProperty& prop : e.props) {
             const size_t item = type_size(prop.type);
             if (!prop.is_list()) {
-                need(item, "a property");
+                need(item);
                 if (prop.role < role_count &&
                     !store(prop.role, record, load_number<Swap>(prop.type, p))) {
                     fail_byte(
@@ -559,7 +244,7 @@ struct PlyReader {
                 p += item;
                 continue;
             }
-            need(type_size(prop.count_type), "a list count");
+            need(type_size(prop.count_type));
             const unsigned char* count_at = p;
             long long count = load_integer<Swap>(prop.count_type, p);
             p += type_size(prop.count_type);
@@ -567,8 +252,9 @@ struct PlyReader {
             if (static_cast<unsigned long long>(count) > static_cast<size_t>(end - p) / item) {
                 fail_byte(file, offset_of(count_at),
                           "list count " + std::to_string(count) + " in " + quoted(prop.name) +
-                              " needs more than the " + std::to_string(end - p) +
-                              " bytes that remain (file truncated?)");
+                              " needs " + std::to_string(count * static_cast<long long>(item)) +
+                              " bytes, but only " + std::to_string(end - p) + " remain: the file " +
+                              ended_after(e, record));
             }
             if (prop.role != role_indices) {
                 p += static_cast<size_t>(count) * item;
@@ -588,6 +274,34 @@ struct PlyReader {
         return p;
     }
 
+    /// How many records of `e` lie whole between `p` and `end`, up to e.count; every record
+    /// takes at least a byte, so the walk ends within the file. A negative list count is
+    /// reported as reading it would.
+    template <bool Swap>
+    uint64_t count_whole_records(const PlyElement& e, const unsigned char* p,
+                                 const unsigned char* end) const {
+        if (e.fixed_size)
+            return std::min<uint64_t>(e.count, static_cast<size_t>(end - p) / e.min_bytes);
+        for (uint64_t r = 0; r < e.count; ++r) {
+            for (const PlyProperty& prop : e.props) {
+                const size_t size = type_size(prop.is_list() ? prop.count_type : prop.type);
+                if (static_cast<size_t>(end - p) < size) return r;
+                if (!prop.is_list()) {
+                    p += size;
+                    continue;
+                }
+                const long long count = load_integer<Swap>(prop.count_type, p);
+                if (count < 0) fail_byte(file, offset_of(p), count_error(e, prop, count));
+                p += size;
+                const size_t item = type_size(prop.type);
+                if (static_cast<unsigned long long>(count) > static_cast<size_t>(end - p) / item)
+                    return r;
+                p += static_cast<size_t>(count) * item;
+            }
+        }
+        return e.count;
+    }
+
     template <bool Swap>
     void read_binary() {
         const auto* begin = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -595,15 +309,12 @@ struct PlyReader {
         const unsigned char* p = begin + header.body_offset;
         for (size_t ei = 0; ei < header.elements.size(); ++ei) {
             const PlyElement& e = header.elements[ei];
-            const auto remaining = static_cast<size_t>(end - p);
-            if (e.count > remaining / e.min_bytes) {
-                fail_byte(file, offset_of(p),
-                          "file truncated or bad count: element " + quoted(e.name) + " declares " +
-                              std::to_string(e.count) + " records of at least " +
-                              std::to_string(e.min_bytes) + " bytes, but only " +
-                              std::to_string(remaining) + " bytes remain");
+            // Records the file cannot hold are never allocated: the whole ones are counted.
+            if (e.count > static_cast<size_t>(end - p) / e.min_bytes) {
+                const uint64_t whole = count_whole_records<Swap>(e, p, end);
+                if (whole < e.count) fail_byte(file, bytes.size(), ended_after(e, whole));
             }
-            begin_element(ei);
+            begin_element(ei, e.count);
             if (e.fixed_size) {
                 if (ei == header.vertex_element) read_fixed_vertices<Swap>(e, p);
                 p += static_cast<size_t>(e.count) * e.min_bytes;
@@ -615,23 +326,45 @@ struct PlyReader {
 
     // ascii ----------------------------------------------------------------------------
 
-    const char* cur = nullptr;       ///< start of the next line
-    const char* text_end = nullptr;  ///< end of the file
-    size_t line = 0;
+    LineCursor lines{std::string_view()};  ///< the body's lines, from the line after the header
+    size_t line = 0;                       ///< the line `tokens` holds
     Tokens tokens{nullptr, nullptr};
 
     [[noreturn]] void fail_here(const std::string& reason) const { fail_line(file, line, reason); }
 
+    static bool is_blank_line(std::string_view text) {
+        for (char c : text) {
+            if (!is_blank(c)) return false;
+        }
+        return true;
+    }
+
     /// Moves `tokens` to the next non-blank line; false at the end of the file.
     bool next_line() {
-        while (cur < text_end) {
-            const void* newline = std::memchr(cur, '\n', static_cast<size_t>(text_end - cur));
-            const char* line_end = newline ? static_cast<const char*>(newline) : text_end;
+        for (std::string_view text; lines.next(text);) {
             ++line;
-            tokens = Tokens{cur, line_end};
-            cur = newline ? line_end + 1 : text_end;
-            while (tokens.p < tokens.end && is_blank(*tokens.p)) ++tokens.p;
-            if (tokens.p < tokens.end) return true;
+            if (is_blank_line(text)) continue;
+            tokens = Tokens{text.data(), text.data() + text.size()};
+            return true;
+        }
+        return false;
+    }
+
+    /// The non-blank lines after the current one, counted up to `limit` on a copy of the cursor.
+    uint64_t count_lines_left(uint64_t limit) const {
+        LineCursor rest = lines;
+        uint64_t records = 0;
+        for (std::string_view text; records < limit && rest.next(text);) {
+            records += is_blank_line(text) ? 0 : 1;
+        }
+        return records;
+    }
+
+    /// Whether records are promised after record `r` of element `ei`.
+    bool promised_after(size_t ei, size_t r) const {
+        if (r + 1 < header.elements[ei].count) return true;
+        for (size_t later = ei + 1; later < header.elements.size(); ++later) {
+            if (header.elements[later].count > 0) return true;
         }
         return false;
     }
@@ -730,27 +463,30 @@ struct PlyReader {
         }
     }
 
+    /// Whether the current line is the file's last and has no end while more records are
+    /// promised: the file was cut there, and the line is no whole record, whatever it holds.
+    bool at_cut_line(size_t ei, size_t r) const {
+        return lines.rest() == bytes.data() + bytes.size() && lines.line_end().empty() &&
+               promised_after(ei, r);
+    }
+
     void read_ascii() {
-        cur = bytes.data() + header.body_offset;
-        text_end = bytes.data() + bytes.size();
+        lines = LineCursor(bytes.substr(header.body_offset));
         line = header.header_lines;
         for (size_t ei = 0; ei < header.elements.size(); ++ei) {
             const PlyElement& e = header.elements[ei];
-            // Every value takes a character and a separator (the last one may lack it).
-            const auto remaining = static_cast<size_t>(text_end - cur);
+            // Every value takes a character and a separator (the last one may lack it). Records
+            // the file cannot hold are never allocated: its lines are counted.
+            uint64_t records = e.count;
+            const auto remaining = static_cast<size_t>(bytes.data() + bytes.size() - lines.rest());
             if (e.count > (remaining + 1) / (2 * e.min_ascii_values)) {
-                fail_line(file, line + 1,
-                          "file truncated or bad count: element " + quoted(e.name) + " declares " +
-                              std::to_string(e.count) + " records of at least " +
-                              std::to_string(e.min_ascii_values) + " values, but only " +
-                              std::to_string(remaining) + " bytes remain");
+                records = count_lines_left(e.count);
             }
-            begin_element(ei);
+            begin_element(ei, records);
             for (size_t r = 0; r < e.count; ++r) {
-                if (!next_line()) {
-                    fail_here("unexpected end of file: element " + quoted(e.name) + " has " +
-                              std::to_string(r) + " of " + std::to_string(e.count) + " records");
-                }
+                if (!next_line()) fail_here(ended_after(e, r));  // (r == records when fewer)
+                if (at_cut_line(ei, r))
+                    fail_here(ended_after(e, r) + " (the last line is cut short)");
                 read_ascii_record(ei, r);
             }
         }
@@ -784,6 +520,8 @@ Mesh load_ply_from_memory(std::string_view bytes, const std::string& name_for_er
     return mesh;
 }
 
-Mesh load_ply(const std::string& path) { return load_ply_from_memory(map_file(path).view(), path); }
+Mesh load_ply(const std::string& path) {
+    return load_ply_from_memory(read_model_file(path).view(), path);
+}
 
 }  // namespace raylane

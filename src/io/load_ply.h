@@ -8,7 +8,9 @@
 
 namespace raylane {
 
-/// Reads a PLY 1.0 file: `ascii`, `binary_little_endian` or `binary_big_endian`.
+/// Reads a PLY 1.0 file: `ascii`, `binary_little_endian` or `binary_big_endian`. A name ending
+/// in .gz is a gzip-compressed file, decompressed into memory first (gzip_file.h); line and
+/// byte numbers in messages count in the decompressed bytes.
 ///
 /// Header lines: format, element, property, comment, obj_info, end_header (blank lines are
 /// skipped). Property types: char uchar short ushort int uint float double and their sized
@@ -21,16 +23,26 @@ namespace raylane {
 /// - Other elements, before or after, are skipped (list properties included).
 /// normal_tris and uv_tris equal tris when the vertices carry normals / uvs.
 ///
-/// ASCII bodies hold one record per line (blank lines skipped); binary bytes after the last
-/// element are ignored. Every element count is checked against the bytes left before
-/// anything is allocated for it.
+/// Lines (of the header and of ASCII bodies) may end in LF, CR LF or CR alone. ASCII bodies
+/// hold one record per line (blank lines skipped); binary bytes after the last
+/// element are ignored. No more records are allocated than the bytes (binary) or lines (ASCII)
+/// left can hold.
+///
+/// A file that ends before the records the header promised says where it ends and how many of
+/// them it held: "file:LINE: ends after K of N vertices" (ASCII; LINE is the file's last line,
+/// and a last line without an end while records are still promised is cut short and not
+/// counted: "... (the last line is cut short)"), "file: byte SIZE: ends after K of N faces"
+/// (binary; K whole records), "'edge' records" for other elements; a list count that runs past
+/// the end: "file: byte N: list count C in 'vertex_indices' needs B bytes, but only R remain:
+/// the file ends after K of N faces".
 ///
 /// Errors (InputError "file:line: reason" in the header and in ASCII bodies, "file: byte N:
-/// reason" in binary bodies): missing magic, unknown header line, unsupported format or
-/// version, missing x/y/z or vertex_indices, counts the file cannot hold, truncated body,
-/// too few or too many values on an ASCII line, bad or out-of-range numbers, NaN or infinite
-/// vertex attributes, negative list count, face with fewer than 3 vertices, vertex index out
-/// of range, a file without faces.
+/// reason" in binary bodies): an empty file ("file: is empty"); UTF-16 text or gzip data under
+/// a name without .gz, said as such (text_form.h); otherwise a missing magic, unknown header line,
+/// unsupported format or version, missing x/y/z or vertex_indices, an early end (above), too few or
+/// too many values on an ASCII line, bad or out-of-range numbers, NaN or infinite vertex
+/// attributes, negative list count, face with fewer than 3 vertices, vertex index out of range, a
+/// file without faces.
 Mesh load_ply(const std::string& path);
 
 /// Same as load_ply on bytes already in memory; `name_for_errors` prefixes messages and gives

@@ -52,6 +52,13 @@ FileBytes::~FileBytes() {
     if (mapped_) ::munmap(const_cast<char*>(mapped_), size_);
 }
 
+FileBytes FileBytes::adopt_mapping(const char* mapping, size_t size) {
+    FileBytes bytes;
+    bytes.mapped_ = mapping;
+    bytes.size_ = size;
+    return bytes;
+}
+
 FileBytes map_file(const std::string& path) {
     FileDescriptor file;
     file.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);

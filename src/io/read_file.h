@@ -25,6 +25,10 @@ class FileBytes {
         return mapped_ ? std::string_view(mapped_, size_) : std::string_view(data_);
     }
 
+    /// Takes over `size` (> 0) bytes at `mapping`, a block of mmap no longer than `size`
+    /// rounded up to whole pages, and unmaps it when the object goes (gzip_file.cpp's output).
+    static FileBytes adopt_mapping(const char* mapping, size_t size);
+
   private:
     friend FileBytes map_file(const std::string& path);
     friend std::string read_file(const std::string& path);

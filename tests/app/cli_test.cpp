@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "support/cli_run.h"
+#include "support/gzip.h"
 
 namespace {
 
@@ -112,6 +113,47 @@ TEST(Cli, MalformedModelNamesFileAndLine) {
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find("raylane_bad_model.obj:4"), std::string::npos) << r.err;
+}
+
+TEST(Cli, InfoReadsAGzipCompressedModel) {
+    const std::string obj =
+        temp_file("raylane_info_gzip.obj.gz",
+                  raylane::test::gzip("v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nv 1 1 0\r\nusemtl\r\n"
+                                      "f 1/ 2/ 3/\r\nf 2// 4// 3//\r\n"));
+    const std::string scene = mesh_scene("raylane_info_gzip_scene.json", obj);
+    const CliRun r = run("info " + scene);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("raylane_info_gzip.obj.gz: 2 triangles\n"), std::string::npos) << r.out;
+}
+
+TEST(Cli, ModelFilesThatAreNoTextModelsGiveOneLine) {
+    struct Case {
+        const char* name;
+        std::string bytes;
+        const char* reason;
+    };
+    const Case cases[] = {
+        {"raylane_form_empty.obj", "", ": is empty"},
+        {"raylane_form_utf16.obj",
+         std::string("\xFF\xFEv\0 \0"
+                     "0\0",
+                     8),
+         ": is UTF-16 text; save it as UTF-8 or ASCII"},
+        {"raylane_form_binary.obj", std::string("v 0\0\1\2", 6),
+         ": is a binary file, not a text OBJ (byte 3 is 0x00)"},
+        {"raylane_form_cut.ply",
+         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "end_header\n0 0 0\n1 0 0\n",
+         ":11: ends after 2 of 4 vertices"},
+    };
+    for (const Case& c : cases) {
+        const std::string model = temp_file(c.name, c.bytes);
+        const CliRun r = run("info " + mesh_scene(std::string(c.name) + ".json", model));
+        EXPECT_EQ(r.code, 2) << c.name;
+        EXPECT_EQ(lines(r.err), 1u) << r.err;
+        EXPECT_NE(r.err.find(model + c.reason + "\n"), std::string::npos) << r.err;
+    }
 }
 
 TEST(Cli, InfoPrintsTheMeshBuildsPhasesForTheMedianSplitOnly) {

@@ -8,13 +8,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/load_ply.h"
+#include "support/gzip.h"
 #include "support/input_error.h"
+#include "support/temp_dir.h"
 
 namespace raylane {
 namespace {
@@ -129,6 +132,58 @@ TEST(LoadObj, AcceptsCrlfTabsRunsOfSpacesAndNoFinalNewline) {
         obj("\xEF\xBB\xBFv  1 2 3\r\n\tv\t4\t5\t6  \r\n  v 7   8 10 \t\r\n\r\nvt 0.5 0.5\r\nf  "
             "1/1\t2/1 3/1 ");
     expect_same_mesh(plain, messy);
+}
+
+TEST(LoadObj, ReadsLfCrlfAndCrLineEndsAlike) {
+    const char* const lines[] = {"v 0 0 0",         "vt 0.5 0.25", "v 2 0 0",       "",
+                                 "# comment",       "v 0 3 0",     "f 1/1 2/1 3/1", "v 0 0 4",
+                                 "f -4/1 -2/1 -1/1"};
+    std::string lf, crlf, cr, mixed;
+    const char* const mixed_ends[] = {"\n", "\r", "\r\n"};
+    for (size_t i = 0; i < std::size(lines); ++i) {
+        lf += std::string(lines[i]) + "\n";
+        crlf += std::string(lines[i]) + "\r\n";
+        cr += std::string(lines[i]) + "\r";
+        mixed += std::string(lines[i]) + mixed_ends[i % 3];
+    }
+    for (const std::string& text : {lf, crlf, cr, mixed}) {
+        Mesh m = obj(text);
+        ASSERT_EQ(m.positions.size(), 4u);
+        EXPECT_EQ(m.positions[1], vec3(2, 0, 0));
+        EXPECT_EQ(m.positions[3], vec3(0, 0, 4));
+        ASSERT_EQ(m.uvs.size(), 1u);
+        EXPECT_EQ(m.uvs[0], vec2(0.5f, 0.25f));
+        expect_triangles(m.tris, {{0, 1, 2}, {0, 2, 3}});
+        expect_triangles(m.uv_tris, {{0, 0, 0}, {0, 0, 0}});
+    }
+}
+
+TEST(LoadObjErrors, CountsLinesEndedByACrAlone) {
+    expect_obj_error("v 0 0 0\rv 1 0 0\r\rv 0 x 0\r", {"test.obj:4:", "bad number 'x'"});
+    expect_obj_error("v 0 0 0\r\nv 1 0 0\rv 0 1 0\nf 1 2 5\r\n", {"test.obj:4:", "index 5"});
+}
+
+TEST(LoadObj, ReadsCornersWithAnEmptyTextureOrNormalIndex) {
+    const std::string base = four_vertices;
+    for (const char* face : {"f 1/ 2/ 3/\n", "f 1// 2// 3//\n", "f 1/ 2// 3\n"}) {
+        SCOPED_TRACE(face);
+        Mesh m = obj(base + face);
+        expect_triangles(m.tris, {{0, 1, 2}});
+        EXPECT_TRUE(m.uv_tris.empty());
+        EXPECT_TRUE(m.normal_tris.empty());
+    }
+    Mesh uv = obj(base + "f 1/4/ 2/3/ 3/2/\n");
+    expect_triangles(uv.tris, {{0, 1, 2}});
+    expect_triangles(uv.uv_tris, {{3, 2, 1}});
+    EXPECT_TRUE(uv.normal_tris.empty());
+    // an empty index is still one form: `v` and `v//vn` do not mix
+    expect_obj_error(base + "f 1// 2//2 3//3\n", {"test.obj:13:", "mixes index forms v and v//vn"});
+}
+
+TEST(LoadObj, AcceptsABareUsemtl) {
+    Mesh m = obj("usemtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl \t\r\nf 1 2 3\nusemtl red\n");
+    EXPECT_EQ(m.positions.size(), 3u);
+    expect_triangles(m.tris, {{0, 1, 2}});
 }
 
 TEST(LoadObj, IgnoresCommentsGroupsMaterialsAndUnknownKeywords) {
@@ -307,7 +362,8 @@ TEST(LoadObjErrors, RejectsAFaceMixingIndexForms) {
 }
 
 TEST(LoadObjErrors, RejectsMalformedCornersAndLines) {
-    expect_obj_error("v 0 0 0\nf 1/ 1 1\n", {"test.obj:2:", "bad face corner"});
+    expect_obj_error("v 0 0 0\nf 1/x 1 1\n", {"test.obj:2:", "bad face corner", "'1/x'"});
+    expect_obj_error("v 0 0 0\nf 1/1/1/ 1 1\n", {"test.obj:2:", "bad face corner", "'1/1/1/'"});
     expect_obj_error("v 0 0 0\nf 1 1 1x\n", {"test.obj:2:", "bad face corner", "'1x'"});
     expect_obj_error("v 0 0 0\n3 4 5\n", {"test.obj:2:", "expected a keyword"});
     expect_obj_error("v 0 0 0\n\x01\x02\n", {"test.obj:2:", "expected a keyword", "\\x01"});
@@ -316,7 +372,7 @@ TEST(LoadObjErrors, RejectsMalformedCornersAndLines) {
 
 TEST(LoadObjErrors, RejectsAFileWithoutFaces) {
     expect_obj_error("v 0 0 0\n# nothing else\n", {"test.obj", "no faces"});
-    expect_obj_error("", {"test.obj", "no faces"});
+    expect_obj_error("\n\r\n", {"test.obj", "no faces"});
 }
 
 TEST(LoadObjErrors, NamesAMissingFile) {
@@ -356,6 +412,44 @@ TEST(LoadObjErrors, LoadMeshRefusesAFileOver2GiBBeforeReadingIt) {
     const std::string message = test::input_error_of([&] { load_mesh(path); });
     fs::remove(path);
     EXPECT_EQ(message, path + ": file is 2147483649 bytes, over the limit of 2^31 for a mesh");
+}
+
+TEST(LoadObjErrors, SaysAnEmptyFileIsEmpty) {
+    EXPECT_EQ(test::input_error_of([] { obj(""); }), "test.obj: is empty");
+    test::TempDir dir("raylane_obj_");
+    const std::string path = (dir.path / "empty.obj").string();
+    test::write_bytes(path, "");
+    EXPECT_EQ(test::input_error_of([&] { load_mesh(path); }), path + ": is empty");
+}
+
+TEST(LoadObjErrors, SaysAUtf16FileIsUtf16) {
+    const std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::string little = "\xFF\xFE";
+    std::string big = "\xFE\xFF";
+    std::string unmarked;
+    for (char c : text) {
+        little += std::string{c, '\0'};
+        big += std::string{'\0', c};
+        unmarked += std::string{c, '\0'};
+    }
+    for (const std::string& bytes : {little, big, unmarked}) {
+        EXPECT_EQ(test::input_error_of([&] { obj(bytes); }),
+                  "test.obj: is UTF-16 text; save it as UTF-8 or ASCII");
+    }
+}
+
+TEST(LoadObjErrors, SaysABinaryFileIsNotATextObj) {
+    std::string bytes = "v 0 0 0\nv 1 0 0\n";
+    bytes += std::string("\x7f\x45\x4c\x46\x02\x01\x01\x00", 8);  // an ELF header
+    EXPECT_EQ(test::input_error_of([&] { obj(bytes); }),
+              "test.obj: is a binary file, not a text OBJ (byte 23 is 0x00)");
+    std::string controls = "v 0 0 0\n";
+    for (int i = 0; i < 16; ++i) controls += static_cast<char>(1 + i % 8);
+    EXPECT_EQ(test::input_error_of([&] { obj(controls); }),
+              "test.obj: is a binary file, not a text OBJ (byte 23 is 0x08)");
+    // gzip data under a plain name
+    EXPECT_EQ(test::input_error_of([&] { obj(test::gzip("v 0 0 0\n")); }),
+              "test.obj: is gzip-compressed; name it test.obj.gz to read it");
 }
 
 // hostile input --------------------------------------------------------------------------

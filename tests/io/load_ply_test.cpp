@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "support/gzip.h"
 #include "support/input_error.h"
 
 namespace raylane {
@@ -278,6 +280,40 @@ TEST(LoadPly, IgnoresBytesAfterTheLastBinaryElement) {
     expect_reference_mesh(ply(bytes), false, false);
 }
 
+TEST(LoadPly, ReadsCrOnlyAndMixedLineEnds) {
+    const std::string lf = write_ply(Format::ascii, {plain_vertex, plain_face});
+    std::string cr = lf;
+    std::replace(cr.begin(), cr.end(), '\n', '\r');
+    std::string mixed;
+    int n = 0;
+    for (char c : lf) mixed += c != '\n' ? std::string(1, c) : (++n % 2 ? "\r" : "\r\n");
+    for (const std::string& text : {cr, mixed}) expect_reference_mesh(ply(text), false, false);
+    // the last face line ("5 4 3 2 1 0 \r") cut off: 11 header lines, 5 vertices, 2 faces
+    EXPECT_EQ(test::input_error_of([&] { ply(cr.substr(0, cr.size() - 13)); }),
+              "test.ply:18: ends after 2 of 3 faces");
+}
+
+TEST(LoadPly, StartsABinaryBodyAfterTheHeadersOwnLineEnd) {
+    // A body whose first byte is LF (x of vertex 0 is the float of bits 0x3f80000a): after a
+    // CR-only header it is data, after CR LF and LF headers the same.
+    const float x0 = std::bit_cast<float>(uint32_t{0x3f80000a});
+    for (const char* end : {"\r", "\r\n", "\n"}) {
+        SCOPED_TRACE(end[1] ? "CR LF" : end[0] == '\r' ? "CR" : "LF");
+        std::string header = write_header(Format::little, {plain_vertex, plain_face});
+        std::string ended;
+        for (char c : header) ended += c == '\n' ? std::string(end) : std::string(1, c);
+        std::string bytes = write_ply(Format::little, {plain_vertex, plain_face});
+        bytes.replace(0, header.size(), ended);
+        std::memcpy(&bytes[ended.size()], &x0, 4);
+        ASSERT_EQ(bytes[ended.size()], '\n');
+        Mesh m = ply(bytes);
+        ASSERT_EQ(m.positions.size(), 5u);
+        EXPECT_EQ(m.positions[0], vec3(x0, ref_positions[0].y, ref_positions[0].z));
+        EXPECT_EQ(m.positions[4], ref_positions[4]);
+        EXPECT_EQ(m.tris.size(), ref_tris.size());
+    }
+}
+
 // shipped models -------------------------------------------------------------------------
 
 TEST(LoadPly, ReadsTheBinaryDragon) {
@@ -383,10 +419,13 @@ TEST(LoadPlyErrors, ReportsTheByteOffsetOfATruncatedBinaryBody) {
     // Faces of 17, 13 and 21 bytes; the last one loses its last byte. The count check
     // (3 faces of at least 13 bytes) passes, the pentagon's list does not fit.
     std::string cut = full.substr(0, faces_at + 17 + 13 + 20);
-    expect_ply_error(cut, {"test.ply: byte " + std::to_string(faces_at + 30), "truncated"});
+    EXPECT_EQ(test::input_error_of([&] { ply(cut); }),
+              "test.ply: byte " + std::to_string(faces_at + 30) +
+                  ": list count 5 in 'vertex_indices' needs 20 bytes, but only 19 remain: the "
+                  "file ends after 2 of 3 faces");
     // Cut inside the vertices: caught before any vertex is read.
-    expect_ply_error(full.substr(0, header + 30),
-                     {"test.ply: byte " + std::to_string(header), "truncated", "'vertex'"});
+    EXPECT_EQ(test::input_error_of([&] { ply(full.substr(0, header + 30)); }),
+              "test.ply: byte " + std::to_string(header + 30) + ": ends after 2 of 5 vertices");
 }
 
 TEST(LoadPlyErrors, RejectsABillionVertexHeaderBeforeAllocating) {
@@ -395,14 +434,15 @@ TEST(LoadPlyErrors, RejectsABillionVertexHeaderBeforeAllocating) {
         "property float y\nproperty float z\nelement face 1\n"
         "property list uchar int vertex_indices\nend_header\n" +
         std::string(1000, '\0');
-    const size_t header = bytes.size() - 1000;
-    expect_ply_error(bytes,
-                     {"test.ply: byte " + std::to_string(header), "1000000000", "1000 bytes"});
+    EXPECT_EQ(test::input_error_of([&] { ply(bytes); }),
+              "test.ply: byte " + std::to_string(bytes.size()) +
+                  ": ends after 83 of 1000000000 vertices");
     std::string text =
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
         "property float z\nelement face 18446744073709551615\n"
         "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-    expect_ply_error(text, {"test.ply:13:", "18446744073709551615", "'face'"});
+    EXPECT_EQ(test::input_error_of([&] { ply(text); }),
+              "test.ply:13: ends after 1 of 18446744073709551615 faces");
     expect_ply_error(
         "ply\nformat ascii 1.0\nelement vertex 5000000000\nproperty float x\nend_header\n",
         {"test.ply:3:", "too many vertices"});
@@ -459,16 +499,85 @@ TEST(LoadPlyErrors, ReportsTheLineOfBadAsciiValues) {
                      {"test.ply:11:", "too many values"});
     expect_ply_error(ascii_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2.5\n",
                      {"test.ply:13:", "bad integer '2.5'"});
-    // No room left for the face: caught by the count check on the line after the last one.
-    expect_ply_error(ascii_header + "0 0 0\n1 0 0\n0 1 0\n",
-                     {"test.ply:13:", "truncated", "'face'"});
+    // No room left for the face: caught by the count check, named at the last line.
+    EXPECT_EQ(test::input_error_of([&] { ply(ascii_header + "0 0 0\n1 0 0\n0 1 0\n"); }),
+              "test.ply:12: ends after 0 of 1 face");
     // Room for the records, but only blank lines: caught when the lines run out.
-    expect_ply_error(ascii_header + "0 0 0\n1 0 0\n" + std::string(20, '\n'),
-                     {"test.ply:31:", "unexpected end of file", "2 of 3"});
+    EXPECT_EQ(
+        test::input_error_of([&] { ply(ascii_header + "0 0 0\n1 0 0\n" + std::string(20, '\n')); }),
+        "test.ply:31: ends after 2 of 3 vertices");
     expect_ply_error(ascii_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n4 0 1 2 0\n",
                      {"test.ply:14:", "after the last element"});
     expect_ply_error(ascii_header + "0 0 nan\n1 0 0\n0 1 0\n3 0 1 2\n",
                      {"test.ply:10:", "not a finite float"});
+}
+
+TEST(LoadPlyErrors, SaysAnEmptyFileIsEmpty) {
+    EXPECT_EQ(test::input_error_of([] { ply(""); }), "test.ply: is empty");
+}
+
+TEST(LoadPlyErrors, SaysAUtf16FileIsUtf16) {
+    std::string little = "\xFF\xFE";
+    std::string unmarked;
+    for (char c : ascii_header) {
+        little += std::string{c, '\0'};
+        unmarked += std::string{'\0', c};
+    }
+    for (const std::string& bytes : {little, unmarked}) {
+        EXPECT_EQ(test::input_error_of([&] { ply(bytes); }),
+                  "test.ply: is UTF-16 text; save it as UTF-8 or ASCII");
+    }
+    EXPECT_EQ(test::input_error_of([&] { ply(test::gzip(ascii_header)); }),
+              "test.ply: is gzip-compressed; name it test.ply.gz to read it");
+}
+
+TEST(LoadPlyErrors, SaysWhereAnAsciiFileEndsAndHowManyRecordsItPromised) {
+    // 5 vertices promised, 3 given; the face count (1) on its own would fit
+    std::string text =
+        "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n";
+    EXPECT_EQ(test::input_error_of([&] { ply(text); }), "test.ply:12: ends after 3 of 5 vertices");
+    // the same with blank lines between records
+    text.insert(text.size() - 6, "\n\n");
+    EXPECT_EQ(test::input_error_of([&] { ply(text); }), "test.ply:14: ends after 3 of 5 vertices");
+    // a last line without its end, cut inside a number or not, is no whole record
+    for (size_t cut : {1, 3}) {
+        EXPECT_EQ(test::input_error_of([&] { ply(text.substr(0, text.size() - cut)); }),
+                  "test.ply:14: ends after 2 of 5 vertices (the last line is cut short)");
+    }
+    // a bad last record with nothing promised after it is reported as itself
+    expect_ply_error(ascii_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1",
+                     {"test.ply:13:", "too few values"});
+    // an element after the faces: its own records and name
+    const std::string edges =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+        "element edge 2\nproperty int a\nproperty int b\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0 1\n";
+    EXPECT_EQ(test::input_error_of([&] { ply(edges); }),
+              "test.ply:17: ends after 1 of 2 'edge' records");
+}
+
+TEST(LoadPlyErrors, SaysWhereABinaryFileEndsAndHowManyRecordsItPromised) {
+    const std::string full = write_ply(Format::big, {plain_vertex, plain_face});
+    const size_t faces_at = write_header(Format::big, {plain_vertex, plain_face}).size() + 60;
+    // faces of 17, 13 and 21 bytes. Cut after the first face: 3 faces of at least 13 bytes do
+    // not fit in 17 + 12, so the whole faces are counted before any is read.
+    std::string cut = full.substr(0, faces_at + 17 + 12);
+    EXPECT_EQ(test::input_error_of([&] { ply(cut); }),
+              "test.ply: byte " + std::to_string(cut.size()) + ": ends after 1 of 3 faces");
+    // Cut in the last property of the last face: there is room for 3 faces of the smallest
+    // size (17 bytes), so the faces are read until one does not fit.
+    std::vector<ElementSpec> elements = layouts()[2].elements;
+    elements.pop_back();  // (no edges after the faces)
+    const std::string lists = write_ply(Format::little, elements);
+    cut = lists.substr(0, lists.size() - 1);
+    EXPECT_EQ(test::input_error_of([&] { ply(cut); }),
+              "test.ply: byte " + std::to_string(cut.size()) + ": ends after 2 of 3 faces");
+    // The file ends inside the header's vertex records: no byte of them is read.
+    EXPECT_EQ(test::input_error_of([&] { ply(full.substr(0, faces_at - 1)); }),
+              "test.ply: byte " + std::to_string(faces_at - 1) + ": ends after 4 of 5 vertices");
 }
 
 TEST(LoadPlyErrors, RejectsNonFiniteBinaryVertices) {
