@@ -2,6 +2,8 @@
 // with std::from_chars, no allocation per line. Sibling of load_ply.cpp.
 #include "io/load_obj.h"
 
+#include <algorithm>
+
 #include <cfloat>
 #include <charconv>
 #include <cmath>
@@ -52,10 +54,10 @@ struct ObjReader {
     std::vector<ForwardRef> forward_refs;
     size_t faces_without_uv = 0;
     size_t faces_without_normal = 0;
-    /// Name from the last `usemtl` line ("" after a bare one). TODO(#mtl): give each triangle a
-    /// material id once the MTL reader lands; `mtllib` names would be collected in parse_line
-    /// the same way.
-    std::string_view material;
+    /// The material of the faces read now: an index into mesh.material_names, or `no_material`
+    /// before any `usemtl` and after a bare one.
+    static constexpr uint32_t no_material = ~0u;
+    uint32_t material = no_material;
 
     [[noreturn]] void fail(const std::string& reason) const {
         throw InputError(file + ":" + std::to_string(line) + ": " + reason);
@@ -209,6 +211,7 @@ struct ObjReader {
             const uvec3 a = corners[i];
             const uvec3 b = corners[i + 1];
             mesh.tris.push_back({c0.x, a.x, b.x});
+            mesh.tri_material.push_back(material);
             if (has_uv) mesh.uv_tris.push_back({c0.y, a.y, b.y});
             if (has_normal) mesh.normal_tris.push_back({c0.z, a.z, b.z});
         }
@@ -237,16 +240,62 @@ struct ObjReader {
             parse_normal();
         } else if (keyword == "usemtl") {
             parse_usemtl();
+        } else if (keyword == "mtllib") {
+            parse_mtllib();
         }
-        // o g s mtllib l p and all other keywords: accepted and ignored.
+        // o g s l p and all other keywords: accepted and ignored.
     }
 
-    /// `usemtl name`, or a bare `usemtl`: back to the default material (an empty name).
-    void parse_usemtl() {
+    /// The rest of the line, without blanks at either end or a trailing comment.
+    std::string_view rest_of_line() {
         skip_blanks();
-        const char* name_end = end;
-        while (name_end > p && is_blank(name_end[-1])) --name_end;
-        material = std::string_view(p, static_cast<size_t>(name_end - p));
+        const char* stop = p;
+        while (stop < end && *stop != '#') ++stop;
+        while (stop > p && is_blank(stop[-1])) --stop;
+        return {p, static_cast<size_t>(stop - p)};
+    }
+
+    /// `usemtl name`, or a bare `usemtl`: back to the default material.
+    void parse_usemtl() {
+        const std::string_view name = rest_of_line();
+        if (name.empty()) {
+            material = no_material;
+            return;
+        }
+        auto& names = mesh.material_names;
+        const auto it = std::find(names.begin(), names.end(), name);
+        material = static_cast<uint32_t>(it - names.begin());
+        if (it == names.end()) names.emplace_back(name);
+    }
+
+    /// `mtllib a.mtl [b.mtl ...]`: the libraries, names separated by blanks.
+    void parse_mtllib() {
+        const std::string_view names = rest_of_line();
+        size_t i = 0;
+        while (i < names.size()) {
+            while (i < names.size() && is_blank(names[i])) ++i;
+            size_t j = i;
+            while (j < names.size() && !is_blank(names[j])) ++j;
+            if (j > i) mesh.material_libraries.emplace_back(names.substr(i, j - i));
+            i = j;
+        }
+    }
+
+    /// The faces before any `usemtl` or after a bare one get the material named "" (the
+    /// object's own); a file that names no material keeps no material lists.
+    void finish_materials() {
+        if (mesh.material_names.empty()) {
+            mesh.tri_material.clear();
+            return;
+        }
+        const auto unnamed = static_cast<uint32_t>(mesh.material_names.size());
+        bool any_unnamed = false;
+        for (uint32_t& m : mesh.tri_material) {
+            if (m != no_material) continue;
+            m = unnamed;
+            any_unnamed = true;
+        }
+        if (any_unnamed) mesh.material_names.emplace_back();
     }
 
     void check_forward_refs() {
@@ -280,6 +329,7 @@ Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_err
         reader.parse_line();
     }
     reader.check_forward_refs();
+    reader.finish_materials();
     if (mesh.tris.empty()) throw InputError(name_for_errors + ": no faces ('f' lines)");
     // Attributes only some faces have are dropped for the whole mesh (see load_obj.h).
     if (reader.faces_without_uv > 0) {

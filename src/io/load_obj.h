@@ -20,9 +20,13 @@ namespace raylane {
 /// a UTF-8 byte order mark, `#` comments (also after the values of a line) and a missing final
 /// newline are fine.
 ///
-/// Ignored: `o g s usemtl mtllib l p` and any other keyword (`vp`, `curv`, ...), i.e. any
-/// line whose first token is a letter followed by letters, digits or '_'; a bare `usemtl`
-/// (no name) is accepted too.
+/// Materials: `usemtl name` gives the faces that follow that material (Mesh::material_names,
+/// Mesh::tri_material); faces before any `usemtl`, or after a bare one, get the material named
+/// "" (the object's own); `mtllib` names go to Mesh::material_libraries, as written. The scene
+/// loader reads the libraries (load_mtl.h).
+///
+/// Ignored: `o g s l p` and any other keyword (`vp`, `curv`, ...), i.e. any line whose first
+/// token is a letter followed by letters, digits or '_'.
 ///
 /// Normals and uvs are kept only when every face has them: if some faces lack `vn` (or `vt`)
 /// the mesh gets no normals (or uvs) at all, and normal_tris / uv_tris are empty.

@@ -67,18 +67,23 @@ int32_t SceneReader::read_texture(const Node& n, Scene& scene) {
     } catch (const InputError& e) {
         fail(file_node, e.what());
     }
-    const std::string key = resolved + (encoding == ImageEncoding::srgb ? "|srgb" : "|lin") +
-                            (options.filter == TextureFilter::nearest ? "|n" : "|b") +
-                            (options.repeat ? "|r" : "|c");
-    if (auto it = textures_.find(key); it != textures_.end()) return it->second;
-    Texture t;
     try {
-        t = load_texture(resolved, encoding);
+        return texture_from_file(resolved, encoding, options.filter, options.repeat, scene);
     } catch (const InputError& e) {
         fail(file_node, e.what());
     }
-    t.filter = options.filter;
-    t.repeat = options.repeat;
+}
+
+/// The texture of a found file with these options, loaded once per file and options.
+int32_t SceneReader::texture_from_file(const std::string& resolved, ImageEncoding encoding,
+                                       TextureFilter filter, bool repeat, Scene& scene) {
+    const std::string key = resolved + (encoding == ImageEncoding::srgb ? "|srgb" : "|lin") +
+                            (filter == TextureFilter::nearest ? "|n" : "|b") +
+                            (repeat ? "|r" : "|c");
+    if (auto it = textures_.find(key); it != textures_.end()) return it->second;
+    Texture t = load_texture(resolved, encoding);
+    t.filter = filter;
+    t.repeat = repeat;
     scene.textures.push_back(std::move(t));
     textures_[key] = int32_t(scene.textures.size() - 1);
     return textures_[key];

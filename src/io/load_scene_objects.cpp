@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/model_path.h"
+#include "scene/split_mesh.h"
 #include "io/scene_reader.h"
 #include "scene/mesh_normals.h"
 #include "scene/transform.h"
@@ -116,9 +117,7 @@ void SceneReader::read_object(const Node& n, Scene& scene) {
     if (own_space) t.translate -= world_origin_;
     if (object.kind == ShapeKind::mesh) {
         // Baked into world space: the object keeps the identity transform.
-        read_mesh(n, t, scene);
-        object.shape = uint32_t(scene.meshes.size() - 1);
-        scene.objects.push_back(object);
+        read_mesh(n, t, object, scene);
         return;
     }
     read_shape(n, own_space, object, scene);
@@ -223,8 +222,10 @@ void SceneReader::read_shape(const Node& n, bool own_space, Object& object, Scen
     }
 }
 
-/// Loads (once per file), fits and bakes a mesh into world space; appends it to scene.meshes.
-void SceneReader::read_mesh(const Node& n, const Transform& t, Scene& scene) {
+/// Loads (once per file), fits and bakes a mesh into world space, and appends it to
+/// scene.meshes with `object` (its material the object's own) to scene.objects: one mesh and
+/// object per material when the file names materials (split_by_material, model_material).
+void SceneReader::read_mesh(const Node& n, const Transform& t, Object object, Scene& scene) {
     Node file = child(n, "file");
     std::string name = text(file);
     std::string resolved;
@@ -259,7 +260,16 @@ void SceneReader::read_mesh(const Node& n, const Transform& t, Scene& scene) {
             fail(n, "the transform moves mesh positions outside the float range");
         }
     }
-    scene.meshes.push_back(std::move(mesh));
+    const std::vector<std::string> libraries = mesh.material_libraries;
+    const uint32_t own = object.material;
+    for (MeshPart& part : split_by_material(std::move(mesh))) {
+        object.material =
+            part.material.empty() ? own
+                                  : model_material(part.material, resolved, libraries, own, scene);
+        object.shape = uint32_t(scene.meshes.size());
+        scene.meshes.push_back(std::move(part.mesh));
+        scene.objects.push_back(object);
+    }
 }
 
 }  // namespace raylane

@@ -5,12 +5,15 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
 #include <utility>
 
 #include "io/json_reader.h"
+#include "io/load_image.h"
+#include "io/load_mtl.h"
 #include "scene/scene.h"
 #include "scene/transform.h"
 
@@ -34,6 +37,8 @@ class SceneReader : JsonReader {
                                           ///< their last object takes them
     std::map<std::string, int> mesh_uses_;     ///< objects still to read, by resolved path
     std::map<std::string, int32_t> textures_;  ///< texture index by file and options
+    /// MTL libraries by resolved path (nullopt: missing, warned about once).
+    std::map<std::string, std::optional<MtlLibrary>> libraries_;
     /// Material index by name, the first material of a name (objects name their material; a
     /// search of the list made 100,000 objects of 100,000 materials quadratic).
     std::unordered_map<std::string, uint32_t> material_ids_;
@@ -54,6 +59,16 @@ class SceneReader : JsonReader {
     void read_brdf(const Node& m, Material& mat) const;
     void read_refraction(const Node& r, Material& mat) const;
     uint32_t material_index(const Node& object, Scene& scene);
+    int32_t texture_from_file(const std::string& resolved, ImageEncoding encoding,
+                              TextureFilter filter, bool repeat, Scene& scene);
+
+    // a model file's own materials (load_scene_model_materials.cpp)
+    uint32_t model_material(const std::string& name, const std::string& model_path,
+                            const std::vector<std::string>& libraries, uint32_t fallback,
+                            Scene& scene);
+    const MtlLibrary* material_library(const std::string& model_path, const std::string& name,
+                                       Scene& scene);
+    Material mtl_material(const MtlMaterial& m, const std::string& library_path, Scene& scene);
 
     // lights (load_scene_lights.cpp)
     Light read_light(const Node& n, Scene& scene);
@@ -66,7 +81,7 @@ class SceneReader : JsonReader {
     void read_object(const Node& n, Scene& scene);
     void expect_shape_keys(const Node& n, ShapeKind kind) const;
     void read_shape(const Node& n, bool own_space, Object& object, Scene& scene) const;
-    void read_mesh(const Node& n, const Transform& t, Scene& scene);
+    void read_mesh(const Node& n, const Transform& t, Object object, Scene& scene);
 };
 
 }  // namespace raylane

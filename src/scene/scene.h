@@ -231,6 +231,9 @@ struct Scene {
     std::vector<Plane> planes;
     std::vector<Triangle> triangles;
     std::vector<Mesh> meshes;
+    /// What the loader let pass but a user should hear (a missing material library, a material
+    /// no library defines, MTL keywords Raylane does not use): one line each.
+    std::vector<std::string> warnings;
 };
 
 /// The scene that needs no model file: sphere, box, cylinder, plane and a triangle, two lights.

@@ -1,0 +1,86 @@
+// io: the scene loader's part for a model file's own materials: the MTL libraries an OBJ names
+// (load_mtl.h), mapped onto Raylane's materials, textures and normal maps found next to them.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "io/scene_reader.h"
+
+namespace raylane {
+
+/// The library `name` (as the model file wrote it, '\' made '/') from the model's folder, read
+/// once; nullptr, with one warning, when it cannot be found or read.
+const MtlLibrary* SceneReader::material_library(const std::string& model_path,
+                                                const std::string& name, Scene& scene) {
+    std::string written = name;
+    std::replace(written.begin(), written.end(), '\\', '/');
+    const std::filesystem::path path =
+        std::filesystem::path(model_path).parent_path() / std::filesystem::path(written);
+    const std::string key = path.lexically_normal().string();
+    if (const auto it = libraries_.find(key); it != libraries_.end())
+        return it->second ? &*it->second : nullptr;
+    std::optional<MtlLibrary>& lib = libraries_[key];
+    try {
+        lib = load_mtl(key);
+    } catch (const InputError& e) {
+        scene.warnings.push_back(model_path + ": material library " + name +
+                                 " not read, its materials get the object's (" + e.what() + ")");
+        return nullptr;
+    }
+    if (!lib->ignored.empty()) {
+        std::string keys;
+        for (const std::string& k : lib->ignored) keys += (keys.empty() ? "" : ", ") + k;
+        scene.warnings.push_back(key + ": ignored " + keys +
+                                 " (no ambient colour, transparency or maps beyond map_Kd and "
+                                 "map_Bump/bump/norm)");
+    }
+    return &*lib;
+}
+
+/// Raylane's material for an MTL material, its textures found from the library's folder (a
+/// texture that cannot be read: one warning, and none).
+Material SceneReader::mtl_material(const MtlMaterial& m, const std::string& library_path,
+                                   Scene& scene) {
+    Material out = material_from_mtl(m);
+    const std::filesystem::path dir = std::filesystem::path(library_path).parent_path();
+    auto texture = [&](const std::string& file, ImageEncoding encoding) -> int32_t {
+        const std::string path = (dir / file).lexically_normal().string();
+        try {
+            return texture_from_file(path, encoding, TextureFilter::bilinear, true, scene);
+        } catch (const InputError& e) {
+            scene.warnings.push_back(library_path + ": material " + m.name + ": " + e.what() +
+                                     "; left out");
+            return -1;
+        }
+    };
+    if (!m.map_kd.empty()) out.texture = texture(m.map_kd, ImageEncoding::srgb);
+    if (!m.map_bump.empty()) out.normal_map = texture(m.map_bump, ImageEncoding::linear);
+    return out;
+}
+
+/// The material of a model's faces that name `name`: the scene's material of that name (a scene
+/// overrides a model's materials by name), else the first library's definition of it, else
+/// `fallback` (the object's material) with one warning.
+uint32_t SceneReader::model_material(const std::string& name, const std::string& model_path,
+                                     const std::vector<std::string>& libraries, uint32_t fallback,
+                                     Scene& scene) {
+    if (const auto it = material_ids_.find(name); it != material_ids_.end()) return it->second;
+    for (const std::string& lib_name : libraries) {
+        const MtlLibrary* lib = material_library(model_path, lib_name, scene);
+        if (!lib) continue;
+        for (const MtlMaterial& m : lib->materials) {
+            if (m.name != name) continue;
+            const std::filesystem::path lib_path =
+                std::filesystem::path(model_path).parent_path() / lib_name;
+            return add_material(scene, mtl_material(m, lib_path.lexically_normal().string(), scene));
+        }
+    }
+    scene.warnings.push_back(model_path + ": material " + name +
+                             (libraries.empty() ? " named, but the file names no mtllib"
+                                                : " is in none of its libraries") +
+                             "; its faces get the object's material");
+    return fallback;
+}
+
+}  // namespace raylane
