@@ -82,19 +82,23 @@ Scene SceneReader::read(const Json& root) {
 
 namespace {
 
-/// The world point that becomes Raylane's origin (numerics.md section 17). A scene that looks
-/// at a point within 8 viewing distances of the world origin is not moved. Farther out, the
-/// look-at point rounded to a multiple of the power of two at or above the viewing distance
-/// becomes the origin, so that the subject's coordinates are no larger than the view and
-/// keep the precision they would have at home.
+/// The world point that becomes Raylane's origin (numerics.md section 17): the eye, so that
+/// what the camera sees at a distance t has coordinates of about t and keeps the precision it
+/// would have at home (a camera-relative origin), wherever the look-at point is. The scale is the
+/// viewing distance, but at most one scene unit: a look-at point set far away may give the
+/// direction of the view rather than the distance of its subject. An eye within 8 scales of the
+/// world origin (in every coordinate) is not moved; farther out, the eye rounded to a multiple of
+/// the power of two at or above the scale becomes the origin.
 glm::dvec3 world_origin_for(glm::dvec3 position, glm::dvec3 look_at) {
     const double distance = glm::length(look_at - position);
-    const glm::dvec3 a = glm::abs(look_at);
-    if (!(distance > 0.0 && distance < std::numeric_limits<double>::infinity()) ||
-        std::max({a.x, a.y, a.z}) <= 8.0 * distance)
+    const glm::dvec3 a = glm::abs(position);
+    if (!(distance > 0.0 && distance < std::numeric_limits<double>::infinity())) {
         return glm::dvec3(0.0);
-    const double grid = std::exp2(std::ceil(std::log2(distance)));
-    return grid * glm::round(look_at / grid);
+    }
+    const double scale = std::min(distance, 1.0);
+    if (std::max({a.x, a.y, a.z}) <= 8.0 * scale) return glm::dvec3(0.0);
+    const double grid = std::exp2(std::ceil(std::log2(scale)));
+    return grid * glm::round(position / grid);
 }
 
 }  // namespace

@@ -214,7 +214,7 @@ struct ShadingOptions {
 struct Scene {
     std::string source;  ///< file the scene came from ("<built-in>" otherwise)
     /// The world point stored as (0, 0, 0): every position in the scene is relative to it
-    /// (load_scene picks it near the camera's look-at point; numerics.md section 17).
+    /// (load_scene picks it at the camera's position, rounded; numerics.md section 17).
     glm::dvec3 world_origin{0.0};
     Camera camera;
     vec3 background{0.0f};

@@ -3,7 +3,11 @@
 // surface within a few ulps, against the double instantiation as the oracle.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "core/offset.h"
 #include "support/geometry_support.h"
@@ -102,6 +106,97 @@ TEST(Sphere, FloatDistanceIsWithinFourUlpsOfTheDoubleOracle) {
                 static_cast<long long>(worst));
 }
 
+/// A ray from just above a huge sphere, and the depth the closed form gives in double from the
+/// same float inputs.
+struct NearSurfaceRay {
+    std::string name;
+    Ray ray;
+    double t_exact;
+};
+
+/// The nearest root of |org + t dir - center|^2 = r^2 in double, for a ray starting outside the
+/// sphere and heading into it: t = c / (-b + sqrt(b^2 - a c)) with f = org - center (exact in
+/// double), a = dir . dir, b = f . dir, c = |f|^2 - r^2 (no cancellation for b < 0).
+double closed_form_depth(const Sphere& s, const Ray& r) {
+    const glm::dvec3 f = glm::dvec3(r.org) - glm::dvec3(s.center), d(r.dir);
+    const double a = glm::dot(d, d), b = glm::dot(f, d);
+    const double c = glm::dot(f, f) - double(s.radius) * double(s.radius);
+    return c / (-b + std::sqrt(b * b - a * c));
+}
+
+/// Rays from height h above the sphere along `up` (a unit vector): straight down, and grazing at
+/// k times the angle below the horizon at which the ray would touch the sphere, towards
+/// `ahead`.
+std::vector<NearSurfaceRay> near_surface_rays(const Sphere& s, double h, glm::dvec3 up,
+                                              glm::dvec3 ahead) {
+    const double r = double(s.radius);
+    const vec3 eye(glm::dvec3(s.center) + (r + h) * up);
+    std::vector<NearSurfaceRay> out;
+    out.push_back({"straight down", {eye, vec3(-up), 0.0f, infinity}, 0.0});
+    const double tangent = std::acos(r / (r + h));
+    for (double k : {1.01, 1.1, 1.5, 2.0, 5.0, 20.0}) {
+        const double angle = k * tangent;
+        const vec3 dir(std::cos(angle) * ahead - std::sin(angle) * up);
+        char name[64];
+        std::snprintf(name, sizeof name, "grazing, %g x the tangent angle", k);
+        out.push_back({name, {eye, dir, 0.0f, infinity}, 0.0});
+    }
+    for (NearSurfaceRay& n : out) n.t_exact = closed_form_depth(s, n.ray);
+    return out;
+}
+
+/// numerics.md §4: a sphere of radius 1e4 seen from 1 above its surface. c = |f|^2 - r^2 is
+/// 2e4 while |f|^2 is 1e8, so a c rounded in float loses 5e-5 of the depth straight down and
+/// about 1e-3 at grazing angles. The depth must be within 1e-6 relative of the closed form,
+/// straight down (t = 1) and at grazing angles, in an axis-aligned frame with exact coordinates
+/// and in an oblique frame where org - center rounds; the packet path gives the same bits at
+/// every width.
+TEST(Sphere, HugeSphereSeenFromJustAboveGivesTheClosedFormDepth) {
+    struct Frame {
+        const char* name;
+        Sphere sphere;
+        glm::dvec3 up, ahead;
+        bool exact;  ///< the origin is exactly 1 above the surface: t = 1 straight down
+    };
+    const glm::dvec3 oblique = glm::normalize(glm::dvec3(1.0, 2.0, -0.5));
+    const Frame frames[] = {
+        {"axis-aligned", {vec3(0.0f, -1e4f, 0.0f), 1e4f}, {0, 1, 0}, {1, 0, 0}, true},
+        {"oblique",
+         {vec3(123.4f, -5678.9f, 42.42f), 1e4f},
+         oblique,
+         glm::normalize(glm::cross(oblique, glm::dvec3(0, 0, 1))),
+         false},
+    };
+    double worst = 0.0;
+    for (const Frame& fr : frames) {
+        SCOPED_TRACE(fr.name);
+        const std::vector<NearSurfaceRay> cases =
+            near_surface_rays(fr.sphere, 1.0, fr.up, fr.ahead);
+        std::vector<Ray> rays;
+        std::vector<float> scalar;
+        for (const NearSurfaceRay& n : cases) {
+            const float t = intersect_sphere(fr.sphere, n.ray);
+            const double err = std::fabs(double(t) - n.t_exact) / n.t_exact;
+            EXPECT_LE(err, 1e-6) << n.name << ": t " << t << ", closed form " << n.t_exact;
+            std::printf(
+                "[ measured ] sphere r = 1e4, 1 above, %s, %s: t %.9g, relative error %.3g\n",
+                fr.name, n.name.c_str(), double(t), err);
+            worst = std::max(worst, err);
+            rays.push_back(n.ray);
+            scalar.push_back(t);
+        }
+        if (fr.exact) {
+            EXPECT_EQ(cases[0].t_exact, 1.0) << "straight down from 1 above";
+        }
+        for_each_width([&](auto w) {
+            EXPECT_EQ(shape_disagreements(scalar, packet_sphere_t(fr.sphere, rays, w), 0), 0u)
+                << "W = " << decltype(w)::value;
+        });
+    }
+    std::printf("[ measured ] sphere r = 1e4 from 1 above: worst relative depth error %.3g\n",
+                worst);
+}
+
 /// The hit point the renderer uses (surface_at: org + t dir, no re-projection) lies on the
 /// sphere within 4 ulps of its magnitude (numerics.md §4), for far spheres seen from the origin
 /// and for spheres at the origin seen from far away (the case where |p| ~ r but t ~ D).
@@ -184,10 +279,10 @@ TEST(Sphere, FarViewedSpheresDoNotShadowThemselves) {
     }
 }
 
-/// From inside (a refracted ray), the far root: t > 0, ahead of the origin, and the point
-/// o + t d (evaluated in double, so only the intersection's error counts) on the sphere within 4
-/// ulps of its magnitude. (t itself can be hundreds of ulps off the double t for short exits near
-/// the surface, where c = |f|^2 - r^2 cancels; the point it gives is still on the sphere.)
+/// From inside (a refracted ray), the far root: t > 0, ahead of the origin, within 4 ulps of the
+/// double t (short exits near the surface too, where c = |f|^2 - r^2 cancels: 962 ulps before c
+/// was carried past float's rounding), and the point o + t d (evaluated in double, so only the
+/// intersection's error counts) on the sphere within 4 ulps of its magnitude.
 TEST(Sphere, OriginInsideGivesTheFarRoot) {
     const Sphere s{vec3(1.5f, -2.0f, 0.25f), 0.75f};
     std::mt19937 rng(9);
@@ -201,6 +296,8 @@ TEST(Sphere, OriginInsideGivesTheFarRoot) {
         const Ray r{s.center + (depth * s.radius) * off, dir, 0.0f, infinity};
         const float t = intersect_sphere(s, r);
         ASSERT_TRUE(t > 0.0f && t < infinity);
+        EXPECT_LE(ulp_distance(t, float(intersect_sphere(s, ray_of<double>(r)))), 4)
+            << "depth " << depth;
         const glm::dvec3 p = glm::dvec3(r.org) + double(t) * glm::dvec3(r.dir);
         const double err = std::fabs(glm::length(p - glm::dvec3(s.center)) - double(s.radius));
         EXPECT_LE(err, 4.0 * float_ulp(glm::length(p))) << "depth " << depth;
