@@ -120,12 +120,14 @@ bool starts_like_json(const std::string& path) {
 
 Scene load_command_scene(const std::string& path) {
     if (path.empty()) return make_builtin_scene();
-    if (is_model_file(path)) return load_model_scene(path);
-    if (!has_extension(path, ".json") && !starts_like_json(path))
+    if (!is_model_file(path) && !has_extension(path, ".json") && !starts_like_json(path))
         throw InputError(path +
                          ": neither a scene nor a model: expected a JSON scene (.json) or a "
-                         "model (.obj, .ply)");
-    return load_scene(path);
+                         "model (.obj, .ply, .obj.gz, .ply.gz)");
+    Scene scene = is_model_file(path) ? load_model_scene(path) : load_scene(path);
+    for (const std::string& w : scene.warnings)
+        std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
+    return scene;
 }
 
 void apply_resolution(Camera& cam, int width, int height) {

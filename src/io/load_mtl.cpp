@@ -140,8 +140,8 @@ struct MtlReader {
             current(t[0]).map_kd = texture_file(raw, t);
         } else if (key == "map_bump" || key == "bump" || key == "norm") {
             current(t[0]).map_bump = texture_file(raw, t);
-        } else {
-            ignore(t[0]);  // Ka, Tf, map_Ks, map_d, refl, Pr, ...
+        } else if (key != "ka") {  // Ka: Raylane's ambient term is k_a c_d
+            ignore(t[0]);          // Tf, map_Ks, map_d, refl, Pr, ...
         }
     }
 };

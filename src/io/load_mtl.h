@@ -22,8 +22,9 @@ struct MtlMaterial {
     std::string map_bump;  ///< map_Bump, bump or norm: read as a tangent-space normal map
 };
 
-/// The materials of one MTL file, and the keywords it holds that Raylane does not use (Ka, d
-/// below 1, Tf, map_Ks, ..., each once, in order of appearance), for one warning line.
+/// The materials of one MTL file, and the keywords it holds that Raylane does not use (d below
+/// 1, Tf, map_Ks, ..., each once, in order of appearance), for one warning line. Ka is read as
+/// nothing and not listed: Raylane's ambient term is k_a c_d.
 struct MtlLibrary {
     std::vector<MtlMaterial> materials;
     std::vector<std::string> ignored;

@@ -1,5 +1,6 @@
 // io: the scene loader's part for a model file's own materials: the MTL libraries an OBJ names
 // (load_mtl.h), mapped onto Raylane's materials, textures and normal maps found next to them.
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -9,15 +10,22 @@
 
 namespace raylane {
 
+namespace {
+
+/// Where the library `name` (as the model file wrote it, '\' made '/') is: in the model's folder.
+std::string library_path(const std::string& model_path, const std::string& name) {
+    std::string written = name;
+    std::replace(written.begin(), written.end(), '\\', '/');
+    return (std::filesystem::path(model_path).parent_path() / written).lexically_normal().string();
+}
+
+}  // namespace
+
 /// The library `name` (as the model file wrote it, '\' made '/') from the model's folder, read
 /// once; nullptr, with one warning, when it cannot be found or read.
 const MtlLibrary* SceneReader::material_library(const std::string& model_path,
                                                 const std::string& name, Scene& scene) {
-    std::string written = name;
-    std::replace(written.begin(), written.end(), '\\', '/');
-    const std::filesystem::path path =
-        std::filesystem::path(model_path).parent_path() / std::filesystem::path(written);
-    const std::string key = path.lexically_normal().string();
+    const std::string key = library_path(model_path, name);
     if (const auto it = libraries_.find(key); it != libraries_.end())
         return it->second ? &*it->second : nullptr;
     std::optional<MtlLibrary>& lib = libraries_[key];
@@ -32,7 +40,7 @@ const MtlLibrary* SceneReader::material_library(const std::string& model_path,
         std::string keys;
         for (const std::string& k : lib->ignored) keys += (keys.empty() ? "" : ", ") + k;
         scene.warnings.push_back(key + ": ignored " + keys +
-                                 " (no ambient colour, transparency or maps beyond map_Kd and "
+                                 " (Raylane has no transparency, and no maps beyond map_Kd and "
                                  "map_Bump/bump/norm)");
     }
     return &*lib;
@@ -71,9 +79,7 @@ uint32_t SceneReader::model_material(const std::string& name, const std::string&
         if (!lib) continue;
         for (const MtlMaterial& m : lib->materials) {
             if (m.name != name) continue;
-            const std::filesystem::path lib_path =
-                std::filesystem::path(model_path).parent_path() / lib_name;
-            return add_material(scene, mtl_material(m, lib_path.lexically_normal().string(), scene));
+            return add_material(scene, mtl_material(m, library_path(model_path, lib_name), scene));
         }
     }
     scene.warnings.push_back(model_path + ": material " + name +

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <numbers>
@@ -67,10 +68,12 @@ glm::dvec3 orbit(glm::dvec3 target, double azimuth_deg, double elevation_deg, do
 }  // namespace
 
 bool is_model_file(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
+    std::string name = std::filesystem::path(path).filename().string();
+    std::transform(name.begin(), name.end(), name.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".obj" || ext == ".ply";
+    for (const char* ext : {".obj", ".ply", ".obj.gz", ".ply.gz"})
+        if (name.size() > std::strlen(ext) && name.ends_with(ext)) return true;
+    return false;
 }
 
 std::string model_scene_json(const std::string& file, const Aabb& bounds) {

@@ -10,7 +10,8 @@
 
 namespace raylane {
 
-/// Whether `path` names a model file by its extension (.obj or .ply, any case).
+/// Whether `path` names a model file by its extension (.obj, .ply, .obj.gz or .ply.gz, any
+/// case).
 bool is_model_file(const std::string& path);
 
 /// The scene of a model alone, in the model's own units and its +y up: `fit` with scale 1 puts

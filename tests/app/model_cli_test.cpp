@@ -75,7 +75,7 @@ TEST(ModelCli, AFileThatIsNeitherSceneNorModelSaysWhatWasExpected) {
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(r.err, "raylane: " + (dir.path / "notes.txt").string() +
                          ": neither a scene nor a model: expected a JSON scene (.json) or a "
-                         "model (.obj, .ply)\n");
+                         "model (.obj, .ply, .obj.gz, .ply.gz)\n");
     const CliRun s = run("scene " + (dir.path / "notes.txt").string());
     EXPECT_EQ(s.code, 2);
     EXPECT_NE(s.err.find("not a model: expected an .obj or .ply file"), std::string::npos) << s.err;

@@ -40,7 +40,7 @@ TEST(LoadMtl, ReadsTheKeywordsRaylaneUsesWithCommentsAndEveryLineEnd) {
     EXPECT_EQ(apple.map_kd, "tex/apple diff.png");
     EXPECT_EQ(apple.map_bump, "normals.png");
     EXPECT_EQ(apple.d, 0.5f);
-    EXPECT_EQ(lib.ignored, (std::vector<std::string>{"Ka", "d", "Tf"}));
+    EXPECT_EQ(lib.ignored, (std::vector<std::string>{"d", "Tf"}));
 }
 
 TEST(LoadMtl, MapsOntoRaylanesMaterials) {

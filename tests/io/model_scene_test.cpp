@@ -47,6 +47,10 @@ TEST(ModelScene, RecognisesModelsByExtension) {
     EXPECT_FALSE(is_model_file("scene.json"));
     EXPECT_FALSE(is_model_file("obj"));
     EXPECT_FALSE(is_model_file("model.ply.txt"));
+    EXPECT_TRUE(is_model_file("dragon.obj.GZ"));
+    EXPECT_TRUE(is_model_file("bunny.ply.gz"));
+    EXPECT_FALSE(is_model_file("notes.gz"));
+    EXPECT_FALSE(is_model_file(".obj"));
 }
 
 TEST(ModelScene, PutsTheModelOnTheFloorInFrameWithTwoShadowedLights) {
