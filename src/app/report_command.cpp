@@ -92,11 +92,16 @@ struct Reporter {
     }
 };
 
+/// ", T s, ~R s left": the time since `start` and, once some work is done, an estimate of the
+/// time left from the pace so far.
 std::string seconds_left(double start, int done, int total) {
-    if (done <= 0) return "";
     const double spent = now_seconds() - start;
-    char buf[48];
-    std::snprintf(buf, sizeof buf, ", ~%.0f s left", spent / done * (total - done));
+    char buf[64];
+    if (done <= 0)
+        std::snprintf(buf, sizeof buf, ", %.0f s", spent);
+    else
+        std::snprintf(buf, sizeof buf, ", %.0f s, ~%.0f s left", spent,
+                      spent / done * (total - done));
     return buf;
 }
 
