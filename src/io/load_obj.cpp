@@ -3,7 +3,6 @@
 #include "io/load_obj.h"
 
 #include <algorithm>
-
 #include <cfloat>
 #include <charconv>
 #include <cmath>

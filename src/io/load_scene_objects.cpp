@@ -6,9 +6,9 @@
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/model_path.h"
-#include "scene/split_mesh.h"
 #include "io/scene_reader.h"
 #include "scene/mesh_normals.h"
+#include "scene/split_mesh.h"
 #include "scene/transform.h"
 
 namespace raylane {
@@ -263,9 +263,9 @@ void SceneReader::read_mesh(const Node& n, const Transform& t, Object object, Sc
     const std::vector<std::string> libraries = mesh.material_libraries;
     const uint32_t own = object.material;
     for (MeshPart& part : split_by_material(std::move(mesh))) {
-        object.material =
-            part.material.empty() ? own
-                                  : model_material(part.material, resolved, libraries, own, scene);
+        object.material = part.material.empty()
+                              ? own
+                              : model_material(part.material, resolved, libraries, own, scene);
         object.shape = uint32_t(scene.meshes.size());
         scene.meshes.push_back(std::move(part.mesh));
         scene.objects.push_back(object);
