@@ -334,11 +334,11 @@ void traverse_block_wide(const WideBvh& wide, const BlockBounds& bounds, int cou
         // an interior node: its slots that some packet of [first, last] enters, nearest first
         const WideNode& node = wide.nodes[node_index];
         float t_enter[wide_arity];
-        uint32_t bits = block_may_hit_slots(bounds, node, t_enter);
+        uint32_t slots = block_may_hit_slots(bounds, node, t_enter);
         Entry entered[wide_arity];
         int n = 0;
-        for (; bits != 0; bits &= bits - 1) {
-            const int s = std::countr_zero(bits);
+        for (; slots != 0; slots &= slots - 1) {
+            const int s = std::countr_zero(slots);
             int f = first;
             while (f <= last && none(test(f, node, s))) ++f;
             if (f > last) continue;
