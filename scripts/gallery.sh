@@ -1,12 +1,19 @@
 #!/usr/bin/env bash
 # Gallery: renders every report figure (scenes/fig*.json) into docs/gallery/*.png, as listed in
-# docs/gallery.md, and times each in both paths (the table under "Render times" there).
-# Usage: scripts/gallery.sh [path/to/raylane]   (default build/release/raylane)
+# docs/gallery.md. With --times it also times each in both paths (the best of 3 runs) and
+# rewrites the table under "Render times" there; without, it changes no tracked file unless an
+# image changed.
+# Usage: scripts/gallery.sh [--times] [path/to/raylane]   (default build/release/raylane)
 # Images are 400 pixels wide (aspect kept) at the scene's spp, except where `options` below says
 # otherwise (every PNG under 200 KB); renders are deterministic (fixed sample hash seed), so a rerun gives the same files.
 set -euo pipefail
 export LC_ALL=C  # printf and awk read "1817.3" with a decimal point
 
+with_times=false
+if [[ "${1:-}" == "--times" ]]; then
+    with_times=true
+    shift
+fi
 raylane="${1:-build/release/raylane}"
 # A relative path given by the caller is relative to the caller's directory.
 if [[ "$raylane" != /* && -e "$raylane" ]]; then raylane="$PWD/$raylane"; fi
@@ -77,7 +84,12 @@ times="$scratch/times.md"
 for scene in scenes/fig*.json; do
     name="$(basename "$scene" .json)"
     opts="${options[$name]:---width 400}"
-    # shellcheck disable=SC2086  # the extra options are meant to split into words
+    if ! $with_times; then
+        # shellcheck disable=SC2086  # the extra options are meant to split into words
+        OUT_NAME="$name" render "$name" $opts
+        continue
+    fi
+    # shellcheck disable=SC2086
     packet=$(best_ms "$out/$name.png" "$scene" $opts)
     # shellcheck disable=SC2086
     scalar=$(best_ms "$scratch/$name.png" "$scene" $opts --path scalar)
@@ -88,15 +100,14 @@ for scene in scenes/fig*.json; do
 done
 
 # the table between the markers of docs/gallery.md
-awk -v times="$times" '
+$with_times && awk -v times="$times" '
     /<!-- render-times begin/ { print; skip = 1
         print "| figure | image | options | packet | scalar | speed-up (scalar / packet time) |"
         print "|---|---|---|---:|---:|---:|"
         while ((getline line < times) > 0) print line
         next }
     /<!-- render-times end/ { skip = 0 }
-    !skip { print }' docs/gallery.md >"$scratch/gallery.md"
-cp "$scratch/gallery.md" docs/gallery.md
+    !skip { print }' docs/gallery.md >"$scratch/gallery.md" && cp "$scratch/gallery.md" docs/gallery.md
 
 # Figure 9's false colour: boxes tested per ray, as the report counted them. Both paths count
 # per ray (for this AOV the packet path traverses each ray of its packets on its own), each

@@ -33,7 +33,8 @@ const MtlLibrary* SceneReader::material_library(const std::string& model_path,
         lib = load_mtl(key);
     } catch (const InputError& e) {
         scene.warnings.push_back(model_path + ": material library " + name +
-                                 " not read, its materials get the object's (" + e.what() + ")");
+                                 " not read, its faces get the default material (" + e.what() +
+                                 ")");
         return nullptr;
     }
     if (!lib->ignored.empty()) {
@@ -69,7 +70,7 @@ Material SceneReader::mtl_material(const MtlMaterial& m, const std::string& libr
 
 /// The material of a model's faces that name `name`: the scene's material of that name (a scene
 /// overrides a model's materials by name), else the first library's definition of it, else
-/// `fallback` (the object's material) with one warning.
+/// `fallback` (the default material) with one warning.
 uint32_t SceneReader::model_material(const std::string& name, const std::string& model_path,
                                      const std::vector<std::string>& libraries, uint32_t fallback,
                                      Scene& scene) {
@@ -85,7 +86,7 @@ uint32_t SceneReader::model_material(const std::string& name, const std::string&
     scene.warnings.push_back(model_path + ": material " + name +
                              (libraries.empty() ? " named, but the file names no mtllib"
                                                 : " is in none of its libraries") +
-                             "; its faces get the object's material");
+                             "; its faces get the default material");
     return fallback;
 }
 

@@ -223,8 +223,9 @@ void SceneReader::read_shape(const Node& n, bool own_space, Object& object, Scen
 }
 
 /// Loads (once per file), fits and bakes a mesh into world space, and appends it to
-/// scene.meshes with `object` (its material the object's own) to scene.objects: one mesh and
-/// object per material when the file names materials (split_by_material, model_material).
+/// scene.meshes with `object` to scene.objects. An object with a "material" key gives it to
+/// every face; without one, a file that names materials gives one mesh and object per material
+/// (split_by_material, model_material), the faces it leaves unnamed the default material.
 void SceneReader::read_mesh(const Node& n, const Transform& t, Object object, Scene& scene) {
     Node file = child(n, "file");
     std::string name = text(file);
@@ -260,6 +261,8 @@ void SceneReader::read_mesh(const Node& n, const Transform& t, Object object, Sc
             fail(n, "the transform moves mesh positions outside the float range");
         }
     }
+    // an object that names its material gives it to every face; else the file's own materials
+    if (find(n, "material")) mesh.material_names.clear();
     const std::vector<std::string> libraries = mesh.material_libraries;
     const uint32_t own = object.material;
     for (MeshPart& part : split_by_material(std::move(mesh))) {

@@ -101,12 +101,11 @@ std::string model_scene_json(const std::string& file, const Aabb& bounds) {
         ", \"resolution\": [1280, 720], \"spp\": 4},\n");
     add("  \"background\": [0.02, 0.02, 0.03],\n  \"materials\": {\n",
         "    \"floor\": {\"c_d\": [0.6, 0.6, 0.6], \"k_d\": 0.7, \"k_a\": 0.08},\n",
-        "    \"model\": {\"c_d\": [0.8, 0.78, 0.74], \"k_d\": 0.6, \"k_a\": 0.08, ",
+        "    \"default\": {\"c_d\": [0.8, 0.78, 0.74], \"k_d\": 0.6, \"k_a\": 0.08, ",
         "\"c_s\": [1, 1, 1], \"k_s\": 0.25, \"exponent\": 40}\n  },\n");
     add("  \"objects\": [\n    {\"shape\": \"plane\", \"point\": [0, 0, 0], ",
         "\"normal\": [0, 1, 0], \"material\": \"floor\"},\n",
-        "    {\"shape\": \"mesh\", \"file\": ", quoted(file),
-        ", \"material\": \"model\", \"fit\": {\"scale\": 1}}\n  ],\n");
+        "    {\"shape\": \"mesh\", \"file\": ", quoted(file), ", \"fit\": {\"scale\": 1}}\n  ],\n");
     add("  \"lights\": [\n    {\"type\": \"point\", \"position\": ", vec(key),
         ", \"color\": [1, 0.95, 0.88], \"intensity\": ", num(0.9 * key_d * key_d),
         ", \"shadows\": true},\n");

@@ -1,5 +1,6 @@
 // io: a model file (.obj, .ply) as a scene of its own: the model on a floor, a camera framing it
-// from a three-quarter view, two lights with shadows, a neutral material. The scene is JSON text
+// from a three-quarter view, two lights with shadows, the model's own materials (a neutral
+// "default" for the faces without one). The scene is JSON text
 // (model_scene_json), so `raylane scene MODEL` prints exactly what `raylane render MODEL` renders.
 #pragma once
 

@@ -17,7 +17,7 @@ using test::TempDir;
 using test::write_file;
 
 /// Two quads side by side: faces 1-2 before any usemtl, 3-4 "red", 5-6 "blue", 7-8 after a
-/// bare usemtl (the object's own), and the library `mtllib`.
+/// bare usemtl (the default material), and the library `mtllib`.
 std::string quads_obj(const std::string& mtllib) {
     std::string obj = "mtllib " + mtllib + "\n";
     for (int q = 0; q < 4; ++q) {
@@ -34,12 +34,15 @@ std::string quads_obj(const std::string& mtllib) {
     return obj;
 }
 
-std::string scene_json(const std::string& materials) {
+/// A scene of quads.obj whose mesh object names no material (the model's own apply), with a
+/// "default" material and `materials` more.
+std::string scene_json(const std::string& materials, const std::string& object_keys = "") {
     return R"({"version": 1, "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0],
                "fov_deg": 40, "resolution": [16, 16]},
-               "materials": {"own": {"c_d": [0.2, 0.2, 0.2]})" +
+               "materials": {"default": {"c_d": [0.2, 0.2, 0.2]})" +
            materials + R"(},
-               "objects": [{"shape": "mesh", "file": "quads.obj", "material": "own"}],
+               "objects": [{"shape": "mesh", "file": "quads.obj")" +
+           object_keys + R"(}],
                "lights": [{"type": "point", "position": [0, 0, -5]}]})";
 }
 
@@ -59,13 +62,13 @@ TEST(ObjMaterials, TheSceneSplitsTheModelByItsMtlMaterials) {
     write_file(dir.path / "quads.mtl",
                "newmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 50\nnewmtl blue\r\nKd 0 0 1\r\n");
     const Scene s = load_scene_from_string(scene_json(""), (dir.path / "s.json").string());
-    ASSERT_EQ(s.objects.size(), 3u);  // red, blue, and the object's own
+    ASSERT_EQ(s.objects.size(), 3u);  // red, blue, and the default
     auto material_of = [&](size_t o) { return s.materials[s.objects[o].material]; };
     EXPECT_EQ(material_of(0).name, "red");
     EXPECT_EQ(material_of(0).c_d, vec3(1, 0, 0));
     EXPECT_EQ(material_of(0).exponent, 50.0f);
     EXPECT_EQ(material_of(1).c_d, vec3(0, 0, 1));
-    EXPECT_EQ(material_of(2).name, "own");
+    EXPECT_EQ(material_of(2).name, "default");
     for (size_t o = 0; o < 3; ++o)
         EXPECT_EQ(s.meshes[s.objects[o].shape].tris.size(), o == 2 ? 4u : 2u);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
@@ -81,13 +84,26 @@ TEST(ObjMaterials, TheScenesMaterialOfTheSameNameOverridesTheModels) {
     EXPECT_EQ(s.materials[s.objects[1].material].c_d, vec3(0, 0, 1));
 }
 
-TEST(ObjMaterials, AMissingLibraryOrMaterialWarnsAndUsesTheObjectsMaterial) {
+TEST(ObjMaterials, AnObjectThatNamesItsMaterialGivesItToEveryFace) {
+    TempDir dir("raylane_objmat_");
+    write_file(dir.path / "quads.obj", quads_obj("quads.mtl"));
+    write_file(dir.path / "quads.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n");
+    const Scene s = load_scene_from_string(
+        scene_json(R"(, "mine": {"c_d": [0, 1, 0]})", R"(, "material": "mine")"),
+        (dir.path / "s.json").string());
+    ASSERT_EQ(s.objects.size(), 1u);
+    EXPECT_EQ(s.materials[s.objects[0].material].name, "mine");
+    EXPECT_EQ(s.meshes[0].tris.size(), 8u);
+    EXPECT_TRUE(s.warnings.empty());
+}
+
+TEST(ObjMaterials, AMissingLibraryOrMaterialWarnsAndUsesTheDefaultMaterial) {
     TempDir dir("raylane_objmat_");
     write_file(dir.path / "quads.obj", quads_obj("missing.mtl"));
     const std::string scene = (dir.path / "s.json").string();
     const Scene s = load_scene_from_string(scene_json(""), scene);
     ASSERT_EQ(s.objects.size(), 3u);
-    for (const Object& o : s.objects) EXPECT_EQ(s.materials[o.material].name, "own");
+    for (const Object& o : s.objects) EXPECT_EQ(s.materials[o.material].name, "default");
     // one line for the library, one per material it should have held
     ASSERT_EQ(s.warnings.size(), 3u);
     EXPECT_NE(s.warnings[0].find("material library missing.mtl not read"), std::string::npos)
@@ -97,7 +113,7 @@ TEST(ObjMaterials, AMissingLibraryOrMaterialWarnsAndUsesTheObjectsMaterial) {
     write_file(dir.path / "missing.mtl", "newmtl red\nKd 1 0 0\nd 0.5\n");
     const Scene t = load_scene_from_string(scene_json(""), scene);
     EXPECT_EQ(t.materials[t.objects[0].material].name, "red");
-    EXPECT_EQ(t.materials[t.objects[1].material].name, "own");  // blue is undefined
+    EXPECT_EQ(t.materials[t.objects[1].material].name, "default");  // blue is undefined
     ASSERT_EQ(t.warnings.size(), 2u);
     EXPECT_NE(t.warnings[0].find("ignored d"), std::string::npos) << t.warnings[0];
     EXPECT_NE(t.warnings[1].find("material blue is in none"), std::string::npos) << t.warnings[1];
