@@ -1,5 +1,4 @@
 // app: `raylane compare SCENE`: both paths with the same samples; differences and speed-up.
-#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -8,16 +7,11 @@
 #include "render/compare.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "render/report_metrics.h"
 #include "simd/simd.h"
 
 namespace raylane {
 namespace {
-
-double median_of(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 struct CompareOptions {
     std::string scene_path, bvh = "median";
@@ -56,7 +50,7 @@ int run_compare(const CompareOptions& o) {
         scalar_s.push_back(a.stats.seconds), packet_s.push_back(b.stats.seconds);
         if (r == 0) scalar = std::move(a), packet = std::move(b);
     }
-    const double scalar_median = median_of(scalar_s), packet_median = median_of(packet_s);
+    const double scalar_median = median(scalar_s), packet_median = median(packet_s);
     const ImageDiff d = diff_images(scalar.film, packet.film);
     const size_t ids = primary_id_mismatches(scene, accel);
     const size_t pixels = scalar.film.pixels.size();

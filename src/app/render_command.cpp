@@ -10,6 +10,8 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "io/load_mesh.h"
+#include "io/model_scene.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "render/warnings.h"
@@ -28,8 +30,12 @@ struct RenderOptions {
 };
 
 std::string default_output(const RenderOptions& o) {
-    std::string stem =
-        o.scene_path.empty() ? "builtin" : std::filesystem::path(o.scene_path).stem().string();
+    // the file name without its extension, .obj.gz and .ply.gz whole
+    const std::string name = std::filesystem::path(o.scene_path).filename().string();
+    const size_t ext = is_model_file(o.scene_path)
+                           ? mesh_extension(name).size()
+                           : std::filesystem::path(name).extension().string().size();
+    std::string stem = o.scene_path.empty() ? "builtin" : name.substr(0, name.size() - ext);
     if (o.aov != "color") stem += "-" + o.aov;
     return stem + ".png";
 }

@@ -13,10 +13,6 @@
 
 namespace raylane {
 
-namespace {
-
-/// The lower-case extension of `path`'s file name: ".obj", ".obj.gz" for a compressed one,
-/// ".gz" or "" when there is no other.
 std::string mesh_extension(const std::string& path) {
     std::string name = file_name_of(path);
     for (char& c : name) {
@@ -26,8 +22,6 @@ std::string mesh_extension(const std::string& path) {
     const size_t dot = name.find_last_of('.', stem_end == 0 ? 0 : stem_end - 1);
     return dot == std::string::npos ? name.substr(stem_end) : name.substr(dot);
 }
-
-}  // namespace
 
 Mesh load_mesh(const std::string& path) {
     static_assert(max_inflated_bytes == static_cast<size_t>(max_mesh_file_bytes));

@@ -18,4 +18,8 @@ inline constexpr int64_t max_mesh_file_bytes = int64_t{1} << 31;
 /// other extension "path: unsupported mesh format ...".
 Mesh load_mesh(const std::string& path);
 
+/// The lower-case extension of `path`'s file name as load_mesh reads it: ".obj", ".obj.gz" for
+/// a compressed one, ".gz" or "" when there is no other.
+std::string mesh_extension(const std::string& path);
+
 }  // namespace raylane

@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <numbers>
@@ -68,12 +67,8 @@ glm::dvec3 orbit(glm::dvec3 target, double azimuth_deg, double elevation_deg, do
 }  // namespace
 
 bool is_model_file(const std::string& path) {
-    std::string name = std::filesystem::path(path).filename().string();
-    std::transform(name.begin(), name.end(), name.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    for (const char* ext : {".obj", ".ply", ".obj.gz", ".ply.gz"})
-        if (name.size() > std::strlen(ext) && name.ends_with(ext)) return true;
-    return false;
+    const std::string ext = mesh_extension(path);
+    return ext == ".obj" || ext == ".ply" || ext == ".obj.gz" || ext == ".ply.gz";
 }
 
 std::string model_scene_json(const std::string& file, const Aabb& bounds) {

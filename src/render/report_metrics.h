@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "image/film.h"
 
@@ -48,6 +49,9 @@ struct LineFit {
 };
 /// Fewer than two usable points, or all x equal: n as counted, a = b = r2 = NaN.
 LineFit fit_loglog(std::span<const double> x, std::span<const double> y);
+
+/// The median of the values (the mean of the middle two for an even count); 0 for none.
+double median(std::vector<double> values);
 
 /// The x at which a fitted line reaches y: 10^((log10 y - a) / b) (error-vs-time.md 3.3, "time
 /// to reach error X"); nullopt when the fit is unusable (b NaN or 0) or y <= 0.

@@ -62,13 +62,6 @@ RenderParams sweep_params(const Scene& scene, SweepKnob knob, int samples, int t
 
 namespace {
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /// Mean and standard error of the mean.
 std::pair<double, double> mean_se(const std::vector<double>& v) {
     const double n = static_cast<double>(v.size());
