@@ -1,4 +1,6 @@
-// app: `raylane render [SCENE] [-o FILE] [--spp N] [--threads N] [--width W --height H] [--aov A]`.
+// app: `raylane render [SCENE] [-o FILE] [--spp N] [--threads N] [--width W --height H] [--aov A]
+// [--frames A..B] [--crop X0 Y0 X1 Y1 | --tile I/N]`: the options and the plain render, frame
+// after frame; under mpirun, app/render_mpi.cpp.
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
@@ -9,12 +11,12 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/render_job.h"
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/model_scene.h"
-#include "render/render_packet.h"
-#include "render/render_scalar.h"
 #include "render/warnings.h"
+#include "scene/camera_path.h"
 #include "scene/features.h"
 #include "simd/simd.h"
 
@@ -23,13 +25,16 @@ namespace {
 
 struct RenderOptions {
     std::string scene_path, output, aov = "color", path = "packet", bvh = "median";
+    std::string frames, tile;
+    std::vector<int> crop;
     int spp = 0, threads = 0, width = 0, height = 0;
     uint32_t seed = 0;
     bool quiet = false;
     bool strict = false;
 };
 
-std::string default_output(const RenderOptions& o) {
+/// SCENE.png (SCENE-AOV.png), with _%04d before the extension when several frames render.
+std::string default_output(const RenderOptions& o, bool frames) {
     // the file name without its extension, .obj.gz and .ply.gz whole
     const std::string name = std::filesystem::path(o.scene_path).filename().string();
     const size_t ext = is_model_file(o.scene_path)
@@ -37,103 +42,86 @@ std::string default_output(const RenderOptions& o) {
                            : std::filesystem::path(name).extension().string().size();
     std::string stem = o.scene_path.empty() ? "builtin" : name.substr(0, name.size() - ext);
     if (o.aov != "color") stem += "-" + o.aov;
+    if (frames) stem += "_%04d";
     return stem + ".png";
 }
 
-int run_render(const RenderOptions& o) {
-    RenderParams params;
-    if (!parse_aov(o.aov, params.aov))
-        throw InputError("--aov: unknown output \"" + o.aov +
-                         "\" (use color, normal, depth or bvh-cost)");
-    // -o is checked as the command line is read; the default output here, before the render
-    const std::string output = o.output.empty() ? default_output(o) : o.output;
+/// The job: the scene at its resolution, the frames and part to render, the renderer's options.
+RenderJob make_job(const RenderOptions& o, Scene scene, const Aov aov) {
+    RenderJob job;
+    job.scene = std::move(scene);
+    apply_resolution(job.scene.camera, o.width, o.height);
+    job.still = job.scene.camera;
+    if (!o.frames.empty())
+        parse_frames(o.frames, frame_count(job.scene.camera_path), job.first_frame, job.last_frame);
+    job.region = parse_region(o.crop, o.tile, job.still.width, job.still.height);
+    job.output = o.output.empty() ? default_output(o, job.first_frame != job.last_frame) : o.output;
     if (o.output.empty()) {
-        if (const std::string why = image_output()(output); !why.empty())
+        if (const std::string why = image_output()(job.output); !why.empty())
             throw InputError("output: " + why);
     }
+    if (job.first_frame != job.last_frame && !has_frame_number(job.output)) {
+        throw InputError("-o " + job.output + ": " +
+                         std::to_string(job.last_frame - job.first_frame + 1) +
+                         " frames need a frame number in the file name, e.g. out/frame_%04d.png");
+    }
+    job.params.aov = aov;
+    job.params.spp = o.spp > 0 ? o.spp : job.still.spp;
+    job.params.threads = worker_threads(o.threads);
+    job.params.seed = o.seed;
+    job.params.progress = !o.quiet;
+    job.scalar = o.path == "scalar";
+    job.bvh = o.bvh;
+    return job;
+}
+
+int run_render(const RenderOptions& o) {
+    Aov aov = Aov::color;
+    if (!parse_aov(o.aov, aov))
+        throw InputError("--aov: unknown output \"" + o.aov +
+                         "\" (use color, normal, depth or bvh-cost)");
+    if (launched_by_mpi()) {
+#ifdef RAYLANE_MPI
+        return render_over_mpi([&] {
+            const double t_load = now_seconds();
+            RenderJob job = make_job(o, load_command_scene(o.scene_path), aov);
+            job.load_ms = elapsed_ms(t_load);
+            return job;
+        });
+#else
+        throw InputError(
+            "started by mpirun, but this raylane was built without MPI: run it alone (it "
+            "uses every core), or build it where Open MPI is installed (libopenmpi-dev)");
+#endif
+    }
     const double t_load = now_seconds();
-    Scene scene = load_command_scene(o.scene_path);
-    const double load_ms = elapsed_ms(t_load);
-    apply_resolution(scene.camera, o.width, o.height);
-    params.spp = o.spp > 0 ? o.spp : scene.camera.spp;
-    params.threads = worker_threads(o.threads);
-    params.seed = o.seed;
-    params.progress = !o.quiet;
-    const int threads = params.threads > 0 ? params.threads : tbb::info::default_concurrency();
-    // what is being rendered, before the progress line
-    std::printf("scene      %s\n", scene.source.c_str());
-    std::printf("resolution %dx%d, %d spp, %s\n", scene.camera.width, scene.camera.height,
-                params.spp, aov_name(params.aov));
-    if (o.path == "scalar")
-        std::printf("path       scalar, %d threads\n", threads);
-    else
-        std::printf("path       packet (W = %d), %d threads\n", native_width, threads);
-    std::fflush(stdout);
+    RenderJob job = make_job(o, load_command_scene(o.scene_path), aov);
+    job.load_ms = elapsed_ms(t_load);
+    print_header(job, 1);
 
     const double t_build = now_seconds();
-    const Accel accel = build_accel(scene, build_params(o.bvh));
-    const double build_ms = elapsed_ms(t_build);
-    for (const std::string& w : scene_warnings(scene, accel))
+    job.accel = build_accel(job.scene, build_params(o.bvh));
+    job.build_ms = elapsed_ms(t_build);
+    for (const std::string& w : scene_warnings(job.scene, job.accel))
         std::printf("warning    %s\n", w.c_str());
     std::fflush(stdout);
 
-    RenderResult result = o.path == "scalar" ? render_scalar(scene, accel, params)
-                                             : render_packet(scene, accel, params);
-    const bool colour = params.aov == Aov::color;
-    const uint64_t samples =
-        uint64_t(scene.camera.width) * uint64_t(scene.camera.height) * uint64_t(params.spp);
-    const std::vector<std::string> warnings =
-        colour ? render_warnings(result.film, result.stats, samples) : std::vector<std::string>{};
-    const bool report_look = colour && scene.tonemap == Tonemap::report;
-    // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages).
-    // A PFM holds an AOV's raw values (scene units, counts); a PNG its mapping, named by `scale`.
-    const bool raw = !colour && image_format(output) == ImageFormat::pfm;
-    std::string scale;
-    Film film;
-    if (report_look) {
-        film = hue_preserving_clamp(std::move(result.film));
-    } else if (raw) {
-        film = std::move(result.film);
-    } else {
-        AovView view = visualise_aov(std::move(result.film), params.aov);
-        film = std::move(view.film);
-        scale = std::move(view.scale);
+    RenderStats total;
+    const double t_frames = now_seconds();
+    for (int frame = job.first_frame; frame <= job.last_frame; ++frame) {
+        RenderResult result = render_part(job, frame, job.region);
+        write_frame(job, frame, std::move(result.film), result.stats);
+        total.add_counts(result.stats);
     }
-    // the bytes and the PNG's stream are made in parallel: on the threads --threads allows
-    tbb::task_arena(params.threads > 0 ? params.threads : tbb::task_arena::automatic).execute([&] {
-        write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
-    });
-
-    const RenderStats& s = result.stats;
-    std::printf("features   %s\n", feature_names(scene_features(scene)).c_str());
-    if (o.bvh != "median") std::printf("bvh        %s\n", o.bvh.c_str());
-    std::printf("rays       %llu primary, %llu shadow",
-                static_cast<unsigned long long>(s.primary_rays),
-                static_cast<unsigned long long>(s.shadow_rays));
-    if (s.reflection_rays > 0)
-        std::printf(", %llu reflection", static_cast<unsigned long long>(s.reflection_rays));
-    if (s.refraction_rays > 0)
-        std::printf(", %llu refraction", static_cast<unsigned long long>(s.refraction_rays));
-    if (s.glossy_rays > 0)
-        std::printf(", %llu glossy", static_cast<unsigned long long>(s.glossy_rays));
-    std::printf("\n");
-    std::printf("time       load %.1f ms, build %.1f ms, render %.1f ms\n", load_ms, build_ms,
-                1000.0 * s.seconds);
-    std::printf("speed      %.2f Mrays/s\n",
-                s.seconds > 0 ? double(s.total_rays()) / s.seconds * 1e-6 : 0.0);
-    if (s.bad_samples() > 0)
-        std::printf("warning    %llu NaN and %llu infinite samples were left out of their pixels\n",
-                    static_cast<unsigned long long>(s.nan_samples),
-                    static_cast<unsigned long long>(s.inf_samples));
-    if (!scale.empty()) std::printf("scale      %s\n", scale.c_str());
-    if (raw)
-        std::printf("values     raw %s (docs/scene-format.md, Outputs)\n", aov_name(params.aov));
-    for (const std::string& w : warnings) std::printf("warning    %s\n", w.c_str());
-    std::printf("image      %s\n", output.c_str());
-    if (o.strict && s.bad_samples() > 0) {
+    if (job.first_frame != job.last_frame) {
+        std::printf("frames     %d in %.1f s (load %.1f ms, build %.1f ms)\n",
+                    job.last_frame - job.first_frame + 1, elapsed_ms(t_frames) / 1000.0,
+                    job.load_ms, job.build_ms);
+    }
+    if (o.strict && total.bad_samples() > 0) {
         std::fprintf(stderr, "raylane: %s: %llu NaN and %llu infinite samples (--strict)\n",
-                     scene.source.c_str(), static_cast<unsigned long long>(s.nan_samples),
-                     static_cast<unsigned long long>(s.inf_samples));
+                     job.scene.source.c_str(), static_cast<unsigned long long>(total.nan_samples),
+                     static_cast<unsigned long long>(total.inf_samples));
         return 3;
     }
     return 0;
@@ -146,7 +134,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
     CLI::App* cmd = app.add_subcommand("render", "render a scene (the built-in scene without one)");
     cmd->add_option("scene", o->scene_path, "scene JSON file or model (.obj, .ply)")
         ->check(CLI::ExistingFile);
-    cmd->add_option("-o,--output", o->output, "image to write (.png or .pfm; default SCENE.png)")
+    cmd->add_option("-o,--output", o->output,
+                    "image to write (.png or .pfm; default SCENE.png); with --frames, a name with "
+                    "a frame number such as frame_%04d.png")
         ->check(image_output());
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
         ->check(CLI::Range(1, 1 << 20));
@@ -161,6 +151,13 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--path", o->path, "renderer: packet (default) or scalar (the reference)")
         ->check(CLI::IsMember({"packet", "scalar"}));
     add_bvh_option(cmd, o->bvh);
+    cmd->add_option("--frames", o->frames,
+                    "frames A..B (or A) of the scene's camera animation; -o then holds a frame "
+                    "number, e.g. out/frame_%04d.png");
+    cmd->add_option("--crop", o->crop, "render only pixels X0..X1-1, Y0..Y1-1 of the frame")
+        ->expected(4);
+    cmd->add_option("--tile", o->tile,
+                    "render only part I of N of the frame (0 <= I < N), cut along the tile grid");
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
     cmd->add_flag("--strict", o->strict,
                   "exit with status 3 when any sample is NaN or infinite (the image is written, "

@@ -1,0 +1,245 @@
+// app: `raylane render` under mpirun: one job over the ranks of MPI_COMM_WORLD (render_job.h,
+// render_over_mpi). Built when CMake finds MPI.
+//
+// The work is a list of units, a row of tiles of a frame each, frame after frame. Rank 0 hands
+// them out on demand and renders units itself between its answers (it does not wait in a busy
+// loop: a blocking receive in Open MPI spins a core the render needs). A worker asks for its
+// next unit before it renders the one in hand, so the answer is there when it is done, then
+// sends the unit's pixels. Rank 0 puts them in the frame's film, writes a frame as soon as its
+// last row is in, with the very code of the plain render: so the file is the one a single
+// process writes, byte for byte (a pixel's value does not depend on who renders its tile).
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+#include "app/render_job.h"
+#include "core/error.h"
+#include "render/tiles.h"
+#include "render/warnings.h"
+
+namespace raylane {
+namespace {
+
+enum Tag : int {
+    tag_ask = 1,     ///< worker -> 0: an int, ignored
+    tag_unit = 2,    ///< 0 -> worker: the unit's index, or -1 when none is left
+    tag_header = 3,  ///< worker -> 0: a ResultHeader
+    tag_pixels = 4,  ///< worker -> 0: the unit's pixels, 3 floats each, row by row
+};
+
+/// A row of tiles of one frame.
+struct Unit {
+    int frame;
+    PixelRect rect;
+};
+
+/// What a worker sends ahead of a unit's pixels: the unit and its counts.
+struct ResultHeader {
+    int64_t unit;
+    uint64_t counts[7];  ///< RenderStats' ray and sample counts
+    double seconds;
+};
+
+void to_header(int64_t unit, const RenderStats& s, ResultHeader& h) {
+    h.unit = unit;
+    const uint64_t c[7] = {s.primary_rays, s.shadow_rays, s.reflection_rays, s.refraction_rays,
+                           s.glossy_rays,  s.nan_samples, s.inf_samples};
+    std::memcpy(h.counts, c, sizeof c);
+    h.seconds = s.seconds;
+}
+
+RenderStats from_header(const ResultHeader& h) {
+    RenderStats s;
+    s.primary_rays = h.counts[0], s.shadow_rays = h.counts[1], s.reflection_rays = h.counts[2];
+    s.refraction_rays = h.counts[3], s.glossy_rays = h.counts[4], s.nan_samples = h.counts[5];
+    s.inf_samples = h.counts[6], s.seconds = h.seconds;
+    return s;
+}
+
+/// Every unit of the job: rows of tiles of the region, frame after frame.
+std::vector<Unit> make_units(const RenderJob& job) {
+    const PixelRect whole{0, 0, job.still.width, job.still.height};
+    const PixelRect r = job.region.empty() ? whole : job.region;
+    const int tile = std::min(job.params.tile_size, 16);  // the packet renderer's grid
+    std::vector<Unit> units;
+    for (int frame = job.first_frame; frame <= job.last_frame; ++frame) {
+        for (int y = r.y0 - r.y0 % tile; y < r.y1; y += tile)
+            units.push_back({frame, {r.x0, std::max(y, r.y0), r.x1, std::min(y + tile, r.y1)}});
+    }
+    return units;
+}
+
+/// Rank 0's frames in progress: their films (the region's size) and the rows still missing.
+struct Gather {
+    Gather(const RenderJob& j, const PixelRect& r, int rows)
+        : job(j), region(r), rows_per_frame(rows) {}
+    const RenderJob& job;
+    PixelRect region;
+    int rows_per_frame;
+    std::map<int, Film> films;
+    std::map<int, int> missing;
+    std::map<int, RenderStats> stats;
+    double start = now_seconds();
+
+    void add(int frame, const PixelRect& rect, const float* rgb, const RenderStats& s) {
+        auto [it, fresh] = films.try_emplace(frame);
+        if (fresh) {
+            it->second = make_film(region.width(), region.height());
+            missing[frame] = rows_per_frame;
+        }
+        Film& film = it->second;
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            std::memcpy(&film.at(rect.x0 - region.x0, y - region.y0),
+                        rgb + size_t(y - rect.y0) * size_t(rect.width()) * 3,
+                        size_t(rect.width()) * sizeof(vec3));
+        }
+        RenderStats& fs = stats[frame];
+        fs.add_counts(s);
+        if (--missing[frame] > 0) return;
+        // the frame is whole: its time is the wall time since the job (or the last frame) began
+        fs.seconds = now_seconds() - start;
+        start = now_seconds();
+        write_frame(job, frame, std::move(film), fs);
+        films.erase(frame), missing.erase(frame), stats.erase(frame);
+    }
+};
+
+/// Pixels of a film as floats, row by row.
+const float* film_floats(const Film& film) {
+    static_assert(sizeof(vec3) == 3 * sizeof(float));
+    return reinterpret_cast<const float*>(film.pixels.data());
+}
+
+/// Rank 0: hands out units, renders its own between answers, gathers and writes the frames.
+void run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool show_progress) {
+    Gather gather(
+        job, job.region.empty() ? PixelRect{0, 0, job.still.width, job.still.height} : job.region,
+        static_cast<int>(units.size()) / (job.last_frame - job.first_frame + 1));
+    Progress progress{"render", units.size(), show_progress && stderr_is_terminal()};
+    size_t next = 0;
+    int workers_left = ranks - 1;
+    std::vector<float> buffer;
+    // answers every message waiting (or, when `wait`, at least one)
+    auto serve = [&](bool wait) {
+        for (;;) {
+            int ready = 0;
+            MPI_Status st;
+            if (wait) {
+                MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+                ready = 1;
+                wait = false;
+            } else {
+                MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &ready, &st);
+            }
+            if (!ready) return;
+            if (st.MPI_TAG == tag_ask) {
+                int ignored = 0;
+                MPI_Recv(&ignored, 1, MPI_INT, st.MPI_SOURCE, tag_ask, MPI_COMM_WORLD,
+                         MPI_STATUS_IGNORE);
+                int unit = next < units.size() ? static_cast<int>(next++) : -1;
+                if (unit < 0) --workers_left;
+                MPI_Send(&unit, 1, MPI_INT, st.MPI_SOURCE, tag_unit, MPI_COMM_WORLD);
+            } else if (st.MPI_TAG == tag_header) {
+                ResultHeader h;
+                MPI_Recv(&h, sizeof h, MPI_BYTE, st.MPI_SOURCE, tag_header, MPI_COMM_WORLD,
+                         MPI_STATUS_IGNORE);
+                const Unit& u = units.at(size_t(h.unit));
+                buffer.resize(size_t(u.rect.width()) * size_t(u.rect.height()) * 3);
+                MPI_Recv(buffer.data(), static_cast<int>(buffer.size()), MPI_FLOAT, st.MPI_SOURCE,
+                         tag_pixels, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+                gather.add(u.frame, u.rect, buffer.data(), from_header(h));
+                progress.step();
+            } else {
+                throw std::runtime_error("MPI: unexpected message");
+            }
+        }
+    };
+    while (next < units.size()) {
+        serve(false);
+        if (next >= units.size()) break;
+        const Unit u = units[next++];
+        RenderResult r = render_part(job, u.frame, u.rect);
+        gather.add(u.frame, u.rect, film_floats(r.film), r.stats);
+        progress.step();
+    }
+    // the last results, and a "none left" to every worker
+    while (workers_left > 0 || !gather.films.empty()) serve(true);
+    progress.finish();
+}
+
+/// A worker: asks for a unit, and for the next before rendering the one in hand.
+void run_worker(RenderJob& job, const std::vector<Unit>& units) {
+    int ask = 0, unit = -1;
+    MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
+    MPI_Recv(&unit, 1, MPI_INT, 0, tag_unit, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    while (unit >= 0) {
+        MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
+        const Unit& u = units.at(size_t(unit));
+        RenderResult r = render_part(job, u.frame, u.rect);
+        ResultHeader h;
+        to_header(unit, r.stats, h);
+        MPI_Send(&h, sizeof h, MPI_BYTE, 0, tag_header, MPI_COMM_WORLD);
+        MPI_Send(film_floats(r.film), static_cast<int>(r.film.pixels.size() * 3), MPI_FLOAT, 0,
+                 tag_pixels, MPI_COMM_WORLD);
+        MPI_Recv(&unit, 1, MPI_INT, 0, tag_unit, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    }
+}
+
+/// Whether every rank succeeded; otherwise the lowest rank that failed prints its line.
+bool all_succeeded(const std::string& error, int rank) {
+    const int mine = error.empty() ? 1 << 30 : rank;
+    int first = 0;
+    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (first == rank) std::fprintf(stderr, "raylane: %s\n", error.c_str());
+    return first == 1 << 30;
+}
+
+}  // namespace
+
+int render_over_mpi(const std::function<RenderJob()>& make_job) {
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    RenderJob job;
+    std::string error;
+    try {
+        job = make_job();
+    } catch (const InputError& e) {
+        error = e.what();
+    }
+    if (!all_succeeded(error, rank)) {
+        MPI_Finalize();
+        return 2;
+    }
+    // only rank 0 speaks: the others' output would interleave with its own
+    if (rank == 0) print_header(job, ranks);
+    const double t_build = now_seconds();
+    job.accel = build_accel(job.scene, build_params(job.bvh));
+    job.build_ms = elapsed_ms(t_build);
+    if (rank == 0) {
+        for (const std::string& w : scene_warnings(job.scene, job.accel))
+            std::printf("warning    %s\n", w.c_str());
+        std::fflush(stdout);
+    }
+    // the renderers' own progress would be a unit's: rank 0 shows the job's
+    const bool progress = rank == 0 && job.params.progress;
+    job.params.progress = false;
+    const std::vector<Unit> units = make_units(job);
+    if (rank == 0)
+        run_rank0(job, units, ranks, progress);
+    else
+        run_worker(job, units);
+    MPI_Finalize();
+    return 0;
+}
+
+}  // namespace raylane
