@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -117,14 +118,27 @@ const float* film_floats(const Film& film) {
     return reinterpret_cast<const float*>(film.pixels.data());
 }
 
+/// What distribution cost: seconds spent in MPI calls and in copying pixels, and rows rendered.
+struct MpiCosts {
+    double serving = 0.0;  ///< rank 0: answering and gathering while it could render
+    double waiting = 0.0;  ///< rank 0 after its last row; a worker in its sends and receives
+    int64_t rows = 0;      ///< units rendered by this rank
+};
+
+/// Asks a worker keeps open: the answer to one is on its way while the other waits for rank 0's
+/// next pause between units.
+constexpr int asks_ahead = 2;
+
 /// Rank 0: hands out units, renders its own between answers, gathers and writes the frames.
-void run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool show_progress) {
+MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool show_progress) {
+    MpiCosts costs;
     Gather gather(
         job, job.region.empty() ? PixelRect{0, 0, job.still.width, job.still.height} : job.region,
         static_cast<int>(units.size()) / (job.last_frame - job.first_frame + 1));
     Progress progress{"render", units.size(), show_progress && stderr_is_terminal()};
     size_t next = 0;
-    int workers_left = ranks - 1;
+    int nones_left = asks_ahead * (ranks - 1);  // every worker's last asks are answered "none"
+    size_t results_due = 0;                     // units handed out whose pixels are not in
     std::vector<float> buffer;
     // answers every message waiting (or, when `wait`, at least one)
     auto serve = [&](bool wait) {
@@ -144,7 +158,10 @@ void run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool s
                 MPI_Recv(&ignored, 1, MPI_INT, st.MPI_SOURCE, tag_ask, MPI_COMM_WORLD,
                          MPI_STATUS_IGNORE);
                 int unit = next < units.size() ? static_cast<int>(next++) : -1;
-                if (unit < 0) --workers_left;
+                if (unit < 0)
+                    --nones_left;
+                else
+                    ++results_due;
                 MPI_Send(&unit, 1, MPI_INT, st.MPI_SOURCE, tag_unit, MPI_COMM_WORLD);
             } else if (st.MPI_TAG == tag_header) {
                 ResultHeader h;
@@ -156,40 +173,73 @@ void run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool s
                          tag_pixels, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
                 gather.add(u.frame, u.rect, buffer.data(), from_header(h));
                 progress.step();
+                --results_due;
             } else {
                 throw std::runtime_error("MPI: unexpected message");
             }
         }
     };
     while (next < units.size()) {
+        const double t = now_seconds();
         serve(false);
+        costs.serving += now_seconds() - t;
         if (next >= units.size()) break;
         const Unit u = units[next++];
         RenderResult r = render_part(job, u.frame, u.rect);
         gather.add(u.frame, u.rect, film_floats(r.film), r.stats);
         progress.step();
+        ++costs.rows;
     }
     // the last results, and a "none left" to every worker
-    while (workers_left > 0 || !gather.films.empty()) serve(true);
+    const double t = now_seconds();
+    while (nones_left > 0 || results_due > 0) serve(true);
+    costs.waiting = now_seconds() - t;
     progress.finish();
+    return costs;
 }
 
 /// A worker: asks for a unit, and for the next before rendering the one in hand.
-void run_worker(RenderJob& job, const std::vector<Unit>& units) {
+/// A worker: keeps asks_ahead asks open, renders what comes, sends each unit's pixels without
+/// waiting for them to arrive (rank 0 takes them between its own units).
+MpiCosts run_worker(RenderJob& job, const std::vector<Unit>& units) {
+    struct Sent {
+        RenderResult result;
+        ResultHeader header;
+        MPI_Request requests[2];
+    };
+    MpiCosts costs;
+    std::vector<std::unique_ptr<Sent>> sent;  // in flight; the buffers stay where they are
     int ask = 0, unit = -1;
-    MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
-    MPI_Recv(&unit, 1, MPI_INT, 0, tag_unit, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    while (unit >= 0) {
-        MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
-        const Unit& u = units.at(size_t(unit));
-        RenderResult r = render_part(job, u.frame, u.rect);
-        ResultHeader h;
-        to_header(unit, r.stats, h);
-        MPI_Send(&h, sizeof h, MPI_BYTE, 0, tag_header, MPI_COMM_WORLD);
-        MPI_Send(film_floats(r.film), static_cast<int>(r.film.pixels.size() * 3), MPI_FLOAT, 0,
-                 tag_pixels, MPI_COMM_WORLD);
+    double t = now_seconds();
+    for (int i = 0; i < asks_ahead; ++i) MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
+    for (;;) {
         MPI_Recv(&unit, 1, MPI_INT, 0, tag_unit, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (unit < 0) break;
+        MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
+        costs.waiting += now_seconds() - t;
+        const Unit& u = units.at(size_t(unit));
+        auto s = std::make_unique<Sent>();
+        s->result = render_part(job, u.frame, u.rect);
+        ++costs.rows;
+        t = now_seconds();
+        to_header(unit, s->result.stats, s->header);
+        MPI_Isend(&s->header, sizeof s->header, MPI_BYTE, 0, tag_header, MPI_COMM_WORLD,
+                  &s->requests[0]);
+        MPI_Isend(film_floats(s->result.film), static_cast<int>(s->result.film.pixels.size() * 3),
+                  MPI_FLOAT, 0, tag_pixels, MPI_COMM_WORLD, &s->requests[1]);
+        sent.push_back(std::move(s));
+        // free what has arrived
+        std::erase_if(sent, [](std::unique_ptr<Sent>& p) {
+            int done = 0;
+            MPI_Testall(2, p->requests, &done, MPI_STATUSES_IGNORE);
+            return done != 0;
+        });
     }
+    for (int i = 1; i < asks_ahead; ++i)  // the other open asks are answered "none" too
+        MPI_Recv(&unit, 1, MPI_INT, 0, tag_unit, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    for (std::unique_ptr<Sent>& p : sent) MPI_Waitall(2, p->requests, MPI_STATUSES_IGNORE);
+    costs.waiting += now_seconds() - t;
+    return costs;
 }
 
 /// Whether every rank succeeded; otherwise the lowest rank that failed prints its line.
@@ -234,10 +284,22 @@ int render_over_mpi(const std::function<RenderJob()>& make_job) {
     const bool progress = rank == 0 && job.params.progress;
     job.params.progress = false;
     const std::vector<Unit> units = make_units(job);
-    if (rank == 0)
-        run_rank0(job, units, ranks, progress);
-    else
-        run_worker(job, units);
+    const double start = now_seconds();
+    const MpiCosts mine =
+        rank == 0 ? run_rank0(job, units, ranks, progress) : run_worker(job, units);
+    const double seconds = now_seconds() - start;
+    // what distribution cost, summed over the workers
+    double waited = rank == 0 ? 0.0 : mine.waiting, workers_waited = 0.0;
+    MPI_Reduce(&waited, &workers_waited, 1, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
+    if (rank == 0) {
+        std::printf(
+            "ranks      %d; rank 0 rendered %lld of %zu rows of tiles, spent %.1f ms "
+            "handing out and gathering, %.1f ms waiting for the last rows; the "
+            "workers waited %.1f ms in all (%.1f %% of their time)\n",
+            ranks, static_cast<long long>(mine.rows), units.size(), 1000.0 * mine.serving,
+            1000.0 * mine.waiting, 1000.0 * workers_waited,
+            100.0 * workers_waited / (seconds * double(ranks - 1)));
+    }
     MPI_Finalize();
     return 0;
 }
