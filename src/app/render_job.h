@@ -63,8 +63,9 @@ int rank_from_environment();
 #ifdef RAYLANE_MPI
 /// Renders a job's frames over the ranks of MPI_COMM_WORLD (app/render_mpi.cpp): every rank
 /// makes the job with `make_job` (loads the scene; an InputError on any rank stops every rank
-/// with one line and exit code 2) and builds the BVH; rows of tiles go out on demand; rank 0
-/// renders too, gathers the pixels and writes every frame. Returns the exit code.
+/// with one line and exit code 2) and builds the BVH; rows of tiles (or pieces of them) go out
+/// on demand; rank 0 renders too, gathers the pixels and writes every frame. Returns the exit
+/// code.
 int render_over_mpi(const std::function<RenderJob()>& make_job);
 #endif
 

@@ -1,7 +1,8 @@
 // app: `raylane render` under mpirun: one job over the ranks of MPI_COMM_WORLD (render_job.h,
 // render_over_mpi). Built when CMake finds MPI.
 //
-// The work is a list of units, a row of tiles of a frame each, frame after frame. Rank 0 hands
+// The work is a list of units, a row of tiles of a frame each (or a piece of one, when there are
+// many ranks), frame after frame. Rank 0 hands
 // them out on demand and renders units itself between its answers (it does not wait in a busy
 // loop: a blocking receive in Open MPI spins a core the render needs). A worker asks for its
 // next unit before it renders the one in hand, so the answer is there when it is done, then
@@ -64,26 +65,43 @@ RenderStats from_header(const ResultHeader& h) {
     return s;
 }
 
-/// Every unit of the job: rows of tiles of the region, frame after frame.
-std::vector<Unit> make_units(const RenderJob& job) {
+/// Units per rank and frame that make_units aims at, at least: enough that the last units,
+/// which leave ranks idle, are a small part of a frame.
+constexpr int units_per_rank = 8;
+
+/// Every unit of the job, frame after frame: the region's rows of tiles, each cut into as many
+/// pieces along the tile grid as it takes for units_per_rank units per rank (a 3840-pixel row
+/// over 64 ranks: 4 pieces of 960 pixels).
+std::vector<Unit> make_units(const RenderJob& job, int ranks) {
     const PixelRect whole{0, 0, job.still.width, job.still.height};
     const PixelRect r = job.region.empty() ? whole : job.region;
     const int tile = std::min(job.params.tile_size, 16);  // the packet renderer's grid
+    const int gx0 = r.x0 - r.x0 % tile, gy0 = r.y0 - r.y0 % tile;
+    const int rows = (r.y1 - gy0 + tile - 1) / tile, cols = (r.x1 - gx0 + tile - 1) / tile;
+    const int pieces = std::clamp((units_per_rank * ranks + rows - 1) / rows, 1, cols);
     std::vector<Unit> units;
     for (int frame = job.first_frame; frame <= job.last_frame; ++frame) {
-        for (int y = r.y0 - r.y0 % tile; y < r.y1; y += tile)
-            units.push_back({frame, {r.x0, std::max(y, r.y0), r.x1, std::min(y + tile, r.y1)}});
+        for (int row = 0; row < rows; ++row) {
+            const int y = gy0 + row * tile;
+            for (int k = 0; k < pieces; ++k) {
+                const int x0 = gx0 + k * cols / pieces * tile;
+                const int x1 = gx0 + (k + 1) * cols / pieces * tile;
+                units.push_back({frame,
+                                 {std::max(x0, r.x0), std::max(y, r.y0), std::min(x1, r.x1),
+                                  std::min(y + tile, r.y1)}});
+            }
+        }
     }
     return units;
 }
 
-/// Rank 0's frames in progress: their films (the region's size) and the rows still missing.
+/// Rank 0's frames in progress: their films (the region's size) and the units still missing.
 struct Gather {
     Gather(const RenderJob& j, const PixelRect& r, int rows)
-        : job(j), region(r), rows_per_frame(rows) {}
+        : job(j), region(r), units_per_frame(rows) {}
     const RenderJob& job;
     PixelRect region;
-    int rows_per_frame;
+    int units_per_frame;
     std::map<int, Film> films;
     std::map<int, int> missing;
     std::map<int, RenderStats> stats;
@@ -93,7 +111,7 @@ struct Gather {
         auto [it, fresh] = films.try_emplace(frame);
         if (fresh) {
             it->second = make_film(region.width(), region.height());
-            missing[frame] = rows_per_frame;
+            missing[frame] = units_per_frame;
         }
         Film& film = it->second;
         for (int y = rect.y0; y < rect.y1; ++y) {
@@ -121,8 +139,8 @@ const float* film_floats(const Film& film) {
 /// What distribution cost: seconds spent in MPI calls and in copying pixels, and rows rendered.
 struct MpiCosts {
     double serving = 0.0;  ///< rank 0: answering and gathering while it could render
-    double waiting = 0.0;  ///< rank 0 after its last row; a worker in its sends and receives
-    int64_t rows = 0;      ///< units rendered by this rank
+    double waiting = 0.0;  ///< rank 0 after its last unit; a worker in its sends and receives
+    int64_t units = 0;     ///< units rendered by this rank
 };
 
 /// Asks a worker keeps open: the answer to one is on its way while the other waits for rank 0's
@@ -188,7 +206,7 @@ MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bo
         RenderResult r = render_part(job, u.frame, u.rect);
         gather.add(u.frame, u.rect, film_floats(r.film), r.stats);
         progress.step();
-        ++costs.rows;
+        ++costs.units;
     }
     // the last results, and a "none left" to every worker
     const double t = now_seconds();
@@ -220,7 +238,7 @@ MpiCosts run_worker(RenderJob& job, const std::vector<Unit>& units) {
         const Unit& u = units.at(size_t(unit));
         auto s = std::make_unique<Sent>();
         s->result = render_part(job, u.frame, u.rect);
-        ++costs.rows;
+        ++costs.units;
         t = now_seconds();
         to_header(unit, s->result.stats, s->header);
         MPI_Isend(&s->header, sizeof s->header, MPI_BYTE, 0, tag_header, MPI_COMM_WORLD,
@@ -283,7 +301,7 @@ int render_over_mpi(const std::function<RenderJob()>& make_job) {
     // the renderers' own progress would be a unit's: rank 0 shows the job's
     const bool progress = rank == 0 && job.params.progress;
     job.params.progress = false;
-    const std::vector<Unit> units = make_units(job);
+    const std::vector<Unit> units = make_units(job, ranks);
     const double start = now_seconds();
     const MpiCosts mine =
         rank == 0 ? run_rank0(job, units, ranks, progress) : run_worker(job, units);
@@ -293,10 +311,10 @@ int render_over_mpi(const std::function<RenderJob()>& make_job) {
     MPI_Reduce(&waited, &workers_waited, 1, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
     if (rank == 0) {
         std::printf(
-            "ranks      %d; rank 0 rendered %lld of %zu rows of tiles, spent %.1f ms "
-            "handing out and gathering, %.1f ms waiting for the last rows; the "
+            "ranks      %d; rank 0 rendered %lld of %zu units, spent %.1f ms "
+            "handing out and gathering, %.1f ms waiting for the last units; the "
             "workers waited %.1f ms in all (%.1f %% of their time)\n",
-            ranks, static_cast<long long>(mine.rows), units.size(), 1000.0 * mine.serving,
+            ranks, static_cast<long long>(mine.units), units.size(), 1000.0 * mine.serving,
             1000.0 * mine.waiting, 1000.0 * workers_waited,
             100.0 * workers_waited / (seconds * double(ranks - 1)));
     }
