@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
         if (!quiet) std::fprintf(stderr, "raylane: %s\n", e.what());
         return 2;
     } catch (const raylane::Cancelled&) {
-        std::fprintf(stderr, "raylane: interrupted; nothing written\n");
+        if (!quiet) std::fprintf(stderr, "raylane: interrupted; nothing written\n");
         return 128 + (stop_signal != 0 ? static_cast<int>(stop_signal) : SIGINT);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "raylane: error: %s\n", e.what());

@@ -10,14 +10,20 @@
 // last row is in, with the very code of the plain render: so the file is the one a single
 // process writes, byte for byte (a pixel's value does not depend on who renders its tile).
 #include <mpi.h>
+#include <tbb/info.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/commands.h"
@@ -65,20 +71,26 @@ RenderStats from_header(const ResultHeader& h) {
     return s;
 }
 
-/// Units per rank and frame that make_units aims at, at least: enough that the last units,
-/// which leave ranks idle, are a small part of a frame.
-constexpr int units_per_rank = 8;
+/// Units per rank and frame that make_units aims at: enough that the last units, which leave
+/// ranks idle, are a small part of a frame...
+constexpr int units_per_rank = 32;
+/// ... as long as a unit keeps a rank's threads busy: this many tiles per thread at least.
+constexpr int tiles_per_thread = 4;
 
-/// Every unit of the job, frame after frame: the region's rows of tiles, each cut into as many
-/// pieces along the tile grid as it takes for units_per_rank units per rank (a 3840-pixel row
-/// over 64 ranks: 4 pieces of 960 pixels).
+/// Every unit of the job, frame after frame: the region's rows of tiles, each cut along the
+/// tile grid into as many pieces as it takes for units_per_rank units per rank, if a piece
+/// still holds tiles_per_thread tiles per thread (a 3840-pixel row over 64 ranks of 16 threads:
+/// 3 pieces of 80 tiles).
 std::vector<Unit> make_units(const RenderJob& job, int ranks) {
     const PixelRect whole{0, 0, job.still.width, job.still.height};
     const PixelRect r = job.region.empty() ? whole : job.region;
     const int tile = std::min(job.params.tile_size, 16);  // the packet renderer's grid
     const int gx0 = r.x0 - r.x0 % tile, gy0 = r.y0 - r.y0 % tile;
     const int rows = (r.y1 - gy0 + tile - 1) / tile, cols = (r.x1 - gx0 + tile - 1) / tile;
-    const int pieces = std::clamp((units_per_rank * ranks + rows - 1) / rows, 1, cols);
+    const int threads =
+        job.params.threads > 0 ? job.params.threads : tbb::info::default_concurrency();
+    const int most = std::max(1, cols / (tiles_per_thread * threads));
+    const int pieces = std::clamp((units_per_rank * ranks + rows - 1) / rows, 1, most);
     std::vector<Unit> units;
     for (int frame = job.first_frame; frame <= job.last_frame; ++frame) {
         for (int row = 0; row < rows; ++row) {
@@ -106,6 +118,7 @@ struct Gather {
     std::map<int, int> missing;
     std::map<int, RenderStats> stats;
     double start = now_seconds();
+    double writing = 0.0;  ///< seconds spent writing frames
 
     void add(int frame, const PixelRect& rect, const float* rgb, const RenderStats& s) {
         auto [it, fresh] = films.try_emplace(frame);
@@ -125,7 +138,9 @@ struct Gather {
         // the frame is whole: its time is the wall time since the job (or the last frame) began
         fs.seconds = now_seconds() - start;
         start = now_seconds();
+        const double t = now_seconds();
         write_frame(job, frame, std::move(film), fs);
+        writing += now_seconds() - t;
         films.erase(frame), missing.erase(frame), stats.erase(frame);
     }
 };
@@ -136,87 +151,168 @@ const float* film_floats(const Film& film) {
     return reinterpret_cast<const float*>(film.pixels.data());
 }
 
+/// A pause between two polls of a wait: a blocking MPI call polls without one, and takes a core
+/// from the ranks that render beside it.
+void pause() { std::this_thread::sleep_for(std::chrono::microseconds(100)); }
+
+/// Waits for n requests, pausing between polls.
+void wait_all(MPI_Request* requests, int n) {
+    for (;;) {
+        int done = 0;
+        MPI_Testall(n, requests, &done, MPI_STATUSES_IGNORE);
+        if (done) return;
+        pause();
+    }
+}
+
+/// Receives a unit's index from rank 0.
+void receive_unit(int& unit) {
+    MPI_Request request;
+    MPI_Irecv(&unit, 1, MPI_INT, 0, tag_unit, MPI_COMM_WORLD, &request);
+    wait_all(&request, 1);
+}
+
 /// What distribution cost: seconds spent in MPI calls and in copying pixels, and rows rendered.
 struct MpiCosts {
-    double serving = 0.0;  ///< rank 0: answering and gathering while it could render
+    double serving = 0.0;  ///< rank 0: answering and gathering while it could render (not
+                           ///< writing frames)
     double waiting = 0.0;  ///< rank 0 after its last unit; a worker in its sends and receives
     int64_t units = 0;     ///< units rendered by this rank
 };
 
-/// Asks a worker keeps open: the answer to one is on its way while the other waits for rank 0's
-/// next pause between units.
+/// Asks a worker keeps open: the answer to one is on its way while it renders another.
 constexpr int asks_ahead = 2;
 
-/// Rank 0: hands out units, renders its own between answers, gathers and writes the frames.
-MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool show_progress) {
-    MpiCosts costs;
+/// Rank 0's service: answers every ask, receives the workers' pixels without blocking (a large
+/// message may need its sender, busy rendering, to move it), takes rank 0's own results from
+/// `take_own(add)` (which returns true once rank 0 renders no more), gathers and writes the
+/// frames. Returns the seconds spent handling messages and pixels (not writing frames, not
+/// pausing).
+template <class TakeOwn>
+double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int ranks,
+                     bool show_progress, std::atomic<size_t>& next, TakeOwn&& take_own) {
     Gather gather(
         job, job.region.empty() ? PixelRect{0, 0, job.still.width, job.still.height} : job.region,
         static_cast<int>(units.size()) / (job.last_frame - job.first_frame + 1));
     Progress progress{"render", units.size(), show_progress && stderr_is_terminal()};
-    size_t next = 0;
     int nones_left = asks_ahead * (ranks - 1);  // every worker's last asks are answered "none"
-    size_t results_due = 0;                     // units handed out whose pixels are not in
-    std::vector<float> buffer;
-    // answers every message waiting (or, when `wait`, at least one)
-    auto serve = [&](bool wait) {
+    size_t gathered = 0;
+    struct Receiving {
+        ResultHeader header;
+        std::vector<float> pixels;
+        MPI_Request request;
+    };
+    std::vector<std::unique_ptr<Receiving>> receiving;
+    auto add = [&](size_t unit, const float* rgb, const RenderStats& stats) {
+        gather.add(units[unit].frame, units[unit].rect, rgb, stats);
+        progress.step();
+        ++gathered;
+    };
+    double busy = 0.0;
+    bool own_done = false;
+    while (!own_done || nones_left > 0 || gathered < units.size()) {
+        const double t = now_seconds(), written = gather.writing;
+        bool any = false;
         for (;;) {
             int ready = 0;
             MPI_Status st;
-            if (wait) {
-                MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
-                ready = 1;
-                wait = false;
-            } else {
-                MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &ready, &st);
-            }
-            if (!ready) return;
+            MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &ready, &st);
+            if (!ready) break;
+            any = true;
             if (st.MPI_TAG == tag_ask) {
                 int ignored = 0;
                 MPI_Recv(&ignored, 1, MPI_INT, st.MPI_SOURCE, tag_ask, MPI_COMM_WORLD,
                          MPI_STATUS_IGNORE);
-                int unit = next < units.size() ? static_cast<int>(next++) : -1;
-                if (unit < 0)
-                    --nones_left;
-                else
-                    ++results_due;
+                const size_t u = next.fetch_add(1);
+                int unit = u < units.size() ? static_cast<int>(u) : -1;
+                if (unit < 0) --nones_left;
                 MPI_Send(&unit, 1, MPI_INT, st.MPI_SOURCE, tag_unit, MPI_COMM_WORLD);
             } else if (st.MPI_TAG == tag_header) {
-                ResultHeader h;
-                MPI_Recv(&h, sizeof h, MPI_BYTE, st.MPI_SOURCE, tag_header, MPI_COMM_WORLD,
-                         MPI_STATUS_IGNORE);
-                const Unit& u = units.at(size_t(h.unit));
-                buffer.resize(size_t(u.rect.width()) * size_t(u.rect.height()) * 3);
-                MPI_Recv(buffer.data(), static_cast<int>(buffer.size()), MPI_FLOAT, st.MPI_SOURCE,
-                         tag_pixels, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-                gather.add(u.frame, u.rect, buffer.data(), from_header(h));
-                progress.step();
-                --results_due;
+                auto r = std::make_unique<Receiving>();
+                MPI_Recv(&r->header, sizeof r->header, MPI_BYTE, st.MPI_SOURCE, tag_header,
+                         MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+                const Unit& u = units.at(size_t(r->header.unit));
+                r->pixels.resize(size_t(u.rect.width()) * size_t(u.rect.height()) * 3);
+                MPI_Irecv(r->pixels.data(), static_cast<int>(r->pixels.size()), MPI_FLOAT,
+                          st.MPI_SOURCE, tag_pixels, MPI_COMM_WORLD, &r->request);
+                receiving.push_back(std::move(r));
             } else {
                 throw std::runtime_error("MPI: unexpected message");
             }
         }
-    };
-    while (next < units.size()) {
-        const double t = now_seconds();
-        serve(false);
-        costs.serving += now_seconds() - t;
-        if (next >= units.size()) break;
-        const Unit u = units[next++];
-        RenderResult r = render_part(job, u.frame, u.rect);
-        gather.add(u.frame, u.rect, film_floats(r.film), r.stats);
-        progress.step();
-        ++costs.units;
+        std::erase_if(receiving, [&](std::unique_ptr<Receiving>& r) {
+            int done = 0;
+            MPI_Test(&r->request, &done, MPI_STATUS_IGNORE);
+            if (done) add(size_t(r->header.unit), r->pixels.data(), from_header(r->header));
+            any = any || done != 0;
+            return done != 0;
+        });
+        own_done = take_own([&](size_t unit, const RenderResult& r) {
+            add(unit, film_floats(r.film), r.stats);
+            any = true;
+        });
+        if (any) {
+            busy += now_seconds() - t - (gather.writing - written);
+        } else {
+            pause();
+        }
     }
-    // the last results, and a "none left" to every worker
-    const double t = now_seconds();
-    while (nones_left > 0 || results_due > 0) serve(true);
-    costs.waiting = now_seconds() - t;
     progress.finish();
+    return busy;
+}
+
+/// Rank 0: a service thread answers the workers as their asks come, gathers the pixels and
+/// writes the frames, while the main thread renders units from the same list. Only the service
+/// thread calls MPI while both run (MPI_THREAD_SERIALIZED).
+MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool show_progress) {
+    MpiCosts costs;
+    std::atomic<size_t> next{0};  // the next unit to hand out, to a worker or to rank 0
+    // rank 0's own results, from the main thread to the service thread
+    struct Own {
+        size_t unit;
+        RenderResult result;
+    };
+    std::mutex own_mutex;
+    std::vector<Own> own;
+    bool own_done = false;
+
+    std::exception_ptr service_error;
+    std::thread service([&] {
+        try {
+            costs.serving = serve_workers(job, units, ranks, show_progress, next, [&](auto&& add) {
+                std::vector<Own> mine;
+                bool done = false;
+                {
+                    std::lock_guard<std::mutex> lock(own_mutex);
+                    mine.swap(own);
+                    done = own_done;
+                }
+                for (Own& o : mine) add(o.unit, o.result);
+                return done;
+            });
+        } catch (...) {
+            service_error = std::current_exception();
+        }
+    });
+    for (;;) {
+        const size_t u = next.fetch_add(1);
+        if (u >= units.size()) break;
+        RenderResult r = render_part(job, units[u].frame, units[u].rect);
+        ++costs.units;
+        std::lock_guard<std::mutex> lock(own_mutex);
+        own.push_back({u, std::move(r)});
+    }
+    const double t = now_seconds();
+    {
+        std::lock_guard<std::mutex> lock(own_mutex);
+        own_done = true;
+    }
+    service.join();
+    costs.waiting = now_seconds() - t;  // after rank 0's last unit
+    if (service_error) std::rethrow_exception(service_error);
     return costs;
 }
 
-/// A worker: asks for a unit, and for the next before rendering the one in hand.
 /// A worker: keeps asks_ahead asks open, renders what comes, sends each unit's pixels without
 /// waiting for them to arrive (rank 0 takes them between its own units).
 MpiCosts run_worker(RenderJob& job, const std::vector<Unit>& units) {
@@ -231,7 +327,7 @@ MpiCosts run_worker(RenderJob& job, const std::vector<Unit>& units) {
     double t = now_seconds();
     for (int i = 0; i < asks_ahead; ++i) MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
     for (;;) {
-        MPI_Recv(&unit, 1, MPI_INT, 0, tag_unit, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        receive_unit(unit);
         if (unit < 0) break;
         MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
         costs.waiting += now_seconds() - t;
@@ -254,8 +350,8 @@ MpiCosts run_worker(RenderJob& job, const std::vector<Unit>& units) {
         });
     }
     for (int i = 1; i < asks_ahead; ++i)  // the other open asks are answered "none" too
-        MPI_Recv(&unit, 1, MPI_INT, 0, tag_unit, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    for (std::unique_ptr<Sent>& p : sent) MPI_Waitall(2, p->requests, MPI_STATUSES_IGNORE);
+        receive_unit(unit);
+    for (std::unique_ptr<Sent>& p : sent) wait_all(p->requests, 2);
     costs.waiting += now_seconds() - t;
     return costs;
 }
@@ -273,13 +369,17 @@ bool all_succeeded(const std::string& error, int rank) {
 
 int render_over_mpi(const std::function<RenderJob()>& make_job) {
     int provided = 0;
-    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided);
     int rank = 0, ranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     RenderJob job;
     std::string error;
     try {
+        if (provided < MPI_THREAD_SERIALIZED)
+            throw InputError(
+                "this MPI library runs no threads beside MPI calls (it gives no "
+                "MPI_THREAD_SERIALIZED), which rank 0 needs");
         job = make_job();
     } catch (const InputError& e) {
         error = e.what();
