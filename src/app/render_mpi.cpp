@@ -2,13 +2,14 @@
 // render_over_mpi). Built when CMake finds MPI.
 //
 // The work is a list of units, a row of tiles of a frame each (or a piece of one, when there are
-// many ranks), frame after frame. Rank 0 hands
-// them out on demand and renders units itself between its answers (it does not wait in a busy
-// loop: a blocking receive in Open MPI spins a core the render needs). A worker asks for its
-// next unit before it renders the one in hand, so the answer is there when it is done, then
-// sends the unit's pixels. Rank 0 puts them in the frame's film, writes a frame as soon as its
-// last row is in, with the very code of the plain render: so the file is the one a single
-// process writes, byte for byte (a pixel's value does not depend on who renders its tile).
+// many ranks), frame after frame. Units go out on demand: a worker keeps two asks open, so the
+// next unit is known before it finishes the one in hand, and sends each unit's pixels without
+// waiting for them to arrive. Rank 0 renders units too, on its main thread, while a service
+// thread answers the asks, receives the pixels, puts them in their frame's film and writes a
+// frame as soon as its last unit is in, with the very code of the plain render: so the file is
+// the one a single process writes, byte for byte (a pixel's value does not depend on who renders
+// its tile). Waits poll with a short pause: a blocking call of Open MPI spins, and would take a
+// core from the ranks that render beside it.
 #include <mpi.h>
 #include <tbb/info.h>
 
@@ -42,7 +43,7 @@ enum Tag : int {
     tag_pixels = 4,  ///< worker -> 0: the unit's pixels, 3 floats each, row by row
 };
 
-/// A row of tiles of one frame.
+/// A row of tiles, or a piece of one, of one frame.
 struct Unit {
     int frame;
     PixelRect rect;
