@@ -152,8 +152,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"packet", "scalar"}));
     add_bvh_option(cmd, o->bvh);
     cmd->add_option("--frames", o->frames,
-                    "frames A..B (or A) of the scene's camera animation; -o then holds a frame "
-                    "number, e.g. out/frame_%04d.png");
+                    "frames A..B (or A, or all) of the scene's camera animation; -o then holds a "
+                    "frame number, e.g. out/frame_%04d.png");
     cmd->add_option("--crop", o->crop, "render only pixels X0..X1-1, Y0..Y1-1 of the frame")
         ->expected(4);
     cmd->add_option("--tile", o->tile,

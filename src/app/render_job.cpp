@@ -26,6 +26,10 @@ RenderResult render_part(RenderJob& job, int frame, const PixelRect& region) {
     RenderParams params = job.params;
     params.seed = frame_seed(job.params.seed, frame);
     params.region = region;
+    if (job.first_frame != job.last_frame) {  // the progress line names the frame
+        job.progress_label = "frame " + std::to_string(frame);
+        params.progress_label = job.progress_label.c_str();
+    }
     return job.scalar ? render_scalar(job.scene, job.accel, params)
                       : render_packet(job.scene, job.accel, params);
 }
@@ -94,10 +98,14 @@ std::string frame_output(const std::string& pattern, int frame) {
 void parse_frames(const std::string& text, int frame_count, int& first, int& last) {
     auto number = [&](const std::string& s) {
         if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos)
-            throw InputError("--frames: expected A..B or A (whole numbers >= 0), got '" + text +
-                             "'");
+            throw InputError("--frames: expected A..B, A or all (whole numbers >= 0), got '" +
+                             text + "'");
         return std::atoi(s.c_str());
     };
+    if (text == "all") {
+        first = 0, last = frame_count - 1;
+        return;
+    }
     const size_t dots = text.find("..");
     first = number(text.substr(0, dots));
     last = dots == std::string::npos ? first : number(text.substr(dots + 2));

@@ -22,6 +22,7 @@ struct RenderJob {
     PixelRect region;            ///< the part of each frame to render (the whole frame by default)
     std::string bvh = "median";  ///< the --bvh build, for the summary
     double load_ms = 0.0, build_ms = 0.0;  ///< for the summary
+    std::string progress_label;            ///< "frame N" while frame N renders
 };
 
 /// Renders `region` of frame `frame`: the frame's camera and seed (frame_seed), the job's
@@ -41,7 +42,8 @@ bool has_frame_number(const std::string& pattern);
 /// rvalue to map it in place.
 void write_frame(const RenderJob& job, int frame, Film film, const RenderStats& stats);
 
-/// The frames A..B of --frames ("A..B" or "A"), checked against the scene's animation.
+/// The frames A..B of --frames ("A..B", "A", or "all" of the scene's animation), checked against
+/// the animation's frames.
 void parse_frames(const std::string& text, int frame_count, int& first, int& last);
 
 /// The part of the frame --crop or --tile names (empty when neither is given): a crop is checked

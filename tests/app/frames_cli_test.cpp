@@ -43,7 +43,7 @@ TEST(FramesCli, BadFramesAndPartsGiveOneLine) {
     const std::string frames = " -o " + (dir.path / "x_%04d.png").string();
     const std::pair<std::string, std::string> cases[] = {
         {turntable + " --frames 2..1" + frames, "ends before it starts"},
-        {turntable + " --frames a..b" + frames, "expected A..B or A"},
+        {turntable + " --frames a..b" + frames, "expected A..B, A or all"},
         {turntable + " --frames 0..72" + frames, "the scene's animation has 72 frames (0..71)"},
         {"--frames 0..1" + frames, "has 1 frame (0)"},
         {turntable + " --frames 0..2" + out, "3 frames need a frame number in the file name"},
