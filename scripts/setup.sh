@@ -2,7 +2,8 @@
 # Installs what Raylane needs from Debian 12's packages (apt-get, as root), if missing.
 set -euo pipefail
 packages=(cmake ninja-build g++ clang libclang-rt-14-dev libxsimd-dev libtbb-dev libglm-dev
-          libstb-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev zlib1g-dev)
+          libstb-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
+          libopenexr-dev)
 # Embree is only for the baseline benchmark; the renderer never links it.
 [ "${RAYLANE_NO_EMBREE:-0}" = 1 ] || packages+=(libembree-dev)
 missing=()

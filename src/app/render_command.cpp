@@ -1,4 +1,5 @@
 // app: `raylane render [SCENE] [-o FILE] [--spp N] [--threads N] [--width W --height H] [--aov A]`.
+// The output is written by write_output.h, which `assemble` shares.
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
@@ -9,6 +10,8 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/part.h"
+#include "app/write_output.h"
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/model_scene.h"
@@ -27,6 +30,7 @@ struct RenderOptions {
     uint32_t seed = 0;
     bool quiet = false;
     bool strict = false;
+    bool exr_float = false;
 };
 
 std::string default_output(const RenderOptions& o) {
@@ -37,16 +41,21 @@ std::string default_output(const RenderOptions& o) {
                            : std::filesystem::path(name).extension().string().size();
     std::string stem = o.scene_path.empty() ? "builtin" : name.substr(0, name.size() - ext);
     if (o.aov != "color") stem += "-" + o.aov;
-    return stem + ".png";
+    return stem + (o.aov == "all" ? ".exr" : ".png");
 }
 
 int run_render(const RenderOptions& o) {
     RenderParams params;
-    if (!parse_aov(o.aov, params.aov))
+    const bool all_aovs = o.aov == "all";  // colour, then the AOVs, as layers of one EXR
+    if (!all_aovs && !parse_aov(o.aov, params.aov))
         throw InputError("--aov: unknown output \"" + o.aov +
-                         "\" (use color, normal, depth or bvh-cost)");
+                         "\" (use color, normal, depth, bvh-cost or all)");
     // -o is checked as the command line is read; the default output here, before the render
     const std::string output = o.output.empty() ? default_output(o) : o.output;
+    if (all_aovs && image_format(output) != ImageFormat::exr)
+        throw InputError(output +
+                         ": --aov all writes its four outputs as the layers of one EXR; "
+                         "use -o FILE.exr");
     if (o.output.empty()) {
         if (const std::string why = image_output()(output); !why.empty())
             throw InputError("output: " + why);
@@ -63,7 +72,7 @@ int run_render(const RenderOptions& o) {
     // what is being rendered, before the progress line
     std::printf("scene      %s\n", scene.source.c_str());
     std::printf("resolution %dx%d, %d spp, %s\n", scene.camera.width, scene.camera.height,
-                params.spp, aov_name(params.aov));
+                params.spp, all_aovs ? "color, normal, depth and bvh-cost" : aov_name(params.aov));
     if (o.path == "scalar")
         std::printf("path       scalar, %d threads\n", threads);
     else
@@ -77,32 +86,37 @@ int run_render(const RenderOptions& o) {
         std::printf("warning    %s\n", w.c_str());
     std::fflush(stdout);
 
-    RenderResult result = o.path == "scalar" ? render_scalar(scene, accel, params)
-                                             : render_packet(scene, accel, params);
+    const auto render = [&](const RenderParams& p) {
+        return o.path == "scalar" ? render_scalar(scene, accel, p) : render_packet(scene, accel, p);
+    };
+    RenderResult result = render(params);
+    std::vector<AovFilm> films;
+    films.push_back({params.aov, Film{}});
+    for (Aov aov : {Aov::normal, Aov::depth, Aov::bvh_cost}) {
+        if (!all_aovs) break;
+        RenderParams p = params;
+        p.aov = aov;
+        p.progress_label = aov_name(aov);
+        films.push_back({aov, render(p).film});
+    }
     const bool colour = params.aov == Aov::color;
     const uint64_t samples =
         uint64_t(scene.camera.width) * uint64_t(scene.camera.height) * uint64_t(params.spp);
     const std::vector<std::string> warnings =
         colour ? render_warnings(result.film, result.stats, samples) : std::vector<std::string>{};
-    const bool report_look = colour && scene.tonemap == Tonemap::report;
-    // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages).
-    // A PFM holds an AOV's raw values (scene units, counts); a PNG its mapping, named by `scale`.
-    const bool raw = !colour && image_format(output) == ImageFormat::pfm;
-    std::string scale;
-    Film film;
-    if (report_look) {
-        film = hue_preserving_clamp(std::move(result.film));
-    } else if (raw) {
-        film = std::move(result.film);
-    } else {
-        AovView view = visualise_aov(std::move(result.film), params.aov);
-        film = std::move(view.film);
-        scale = std::move(view.scale);
+    // PNG and PFM as they were; an EXR holds the raw films and what made them
+    const bool raw = !colour && image_format(output) != ImageFormat::png;
+    OutputOptions out;
+    out.tonemap = scene.tonemap;
+    out.threads = params.threads;
+    out.exr_float = o.exr_float;
+    if (image_format(output) == ImageFormat::exr) {
+        PartInfo info = make_part_info(scene, params, o.path, o.bvh);
+        if (all_aovs) set_part_setting(info, "aov", "all");
+        out.attributes = frame_attributes(info);
     }
-    // the bytes and the PNG's stream are made in parallel: on the threads --threads allows
-    tbb::task_arena(params.threads > 0 ? params.threads : tbb::task_arena::automatic).execute([&] {
-        write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
-    });
+    films[0].film = std::move(result.film);
+    const std::string scale = write_render_output(output, std::move(films), out);
 
     const RenderStats& s = result.stats;
     std::printf("features   %s\n", feature_names(scene_features(scene)).c_str());
@@ -146,8 +160,11 @@ void add_render_command(CLI::App& app, int& exit_code) {
     CLI::App* cmd = app.add_subcommand("render", "render a scene (the built-in scene without one)");
     cmd->add_option("scene", o->scene_path, "scene JSON file or model (.obj, .ply)")
         ->check(CLI::ExistingFile);
-    cmd->add_option("-o,--output", o->output, "image to write (.png or .pfm; default SCENE.png)")
+    cmd->add_option("-o,--output", o->output,
+                    "image to write (.png, .pfm or .exr; default SCENE.png)")
         ->check(image_output());
+    cmd->add_flag("--exr-float", o->exr_float,
+                  "EXR output: 32-bit floats (default: 16-bit halves)");
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
         ->check(CLI::Range(1, 1 << 20));
     add_threads_option(cmd, o->threads);
@@ -155,8 +172,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, max_film_side));
     cmd->add_option("--height", o->height, "image height (alone: keeps the aspect ratio)")
         ->check(CLI::Range(1, max_film_side));
-    cmd->add_option("--aov", o->aov, "output: color, normal, depth or bvh-cost")
-        ->check(CLI::IsMember({"color", "normal", "depth", "bvh-cost"}));
+    cmd->add_option("--aov", o->aov,
+                    "output: color, normal, depth, bvh-cost, or all (as layers of one .exr)")
+        ->check(CLI::IsMember({"color", "normal", "depth", "bvh-cost", "all"}));
     cmd->add_option("--seed", o->seed, "seed of the sample hash");
     cmd->add_option("--path", o->path, "renderer: packet (default) or scalar (the reference)")
         ->check(CLI::IsMember({"packet", "scalar"}));
