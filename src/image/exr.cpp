@@ -17,6 +17,7 @@
 #include <fstream>
 #include <map>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 
 #include "core/error.h"
@@ -142,8 +143,27 @@ bool has_exr_magic(const std::string& path) {
            magic[3] == 0x01;
 }
 
-ExrImage read_exr_file(const std::string& path) {
-    Imf::InputFile file(path.c_str());
+/// An EXR held in memory, for OpenEXR's reader: a read past the end throws.
+class MemoryStream : public Imf::IStream {
+  public:
+    MemoryStream(std::string_view bytes, const std::string& name)
+        : Imf::IStream(name.c_str()), bytes_(bytes) {}
+    bool read(char c[], int n) override {
+        if (n < 0 || uint64_t(n) > bytes_.size() - at_)
+            throw std::runtime_error("the file ends early (truncated)");
+        std::copy_n(bytes_.data() + at_, n, c);
+        at_ += uint64_t(n);
+        return at_ < bytes_.size();
+    }
+    uint64_t tellg() override { return at_; }
+    void seekg(uint64_t pos) override { at_ = std::min<uint64_t>(pos, bytes_.size()); }
+
+  private:
+    std::string_view bytes_;
+    uint64_t at_ = 0;
+};
+
+ExrImage read_exr_file(const std::string& path, Imf::InputFile& file) {
     const Imf::Header& header = file.header();
     if (header.hasType() && header.type() != Imf::SCANLINEIMAGE && header.type() != Imf::TILEDIMAGE)
         throw InputError(path + ": holds deep data (Raylane reads flat images)");
@@ -216,23 +236,45 @@ ExrImage read_exr_file(const std::string& path) {
     return image;
 }
 
+/// read(), with every exception but InputError turned into one: "name: not a readable EXR: ...".
+template <class Read>
+ExrImage read_or_explain(const std::string& name, Read&& read) {
+    try {
+        return read();
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw InputError(name + ": not a readable EXR (out of memory reading it)");
+    } catch (const std::exception& e) {
+        throw InputError(name + ": not a readable EXR: " + exr_reason(e.what(), name));
+    }
+}
+
+std::string no_magic(const std::string& name) {
+    return name + ": not a readable EXR: not an OpenEXR file (no EXR magic number)";
+}
+
 }  // namespace
 
 ExrImage read_exr(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
     if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory");
-    if (!has_exr_magic(path))
-        throw InputError(path + ": not a readable EXR: not an OpenEXR file (no EXR magic number)");
-    try {
-        return read_exr_file(path);
-    } catch (const InputError&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw InputError(path + ": not a readable EXR (out of memory reading it)");
-    } catch (const std::exception& e) {
-        throw InputError(path + ": not a readable EXR: " + exr_reason(e.what(), path));
-    }
+    if (!has_exr_magic(path)) throw InputError(no_magic(path));
+    return read_or_explain(path, [&] {
+        Imf::InputFile file(path.c_str());
+        return read_exr_file(path, file);
+    });
+}
+
+ExrImage read_exr_from_memory(std::string_view bytes, const std::string& name) {
+    if (bytes.substr(0, 4) != std::string_view("\x76\x2f\x31\x01", 4))
+        throw InputError(no_magic(name));
+    return read_or_explain(name, [&] {
+        MemoryStream stream(bytes, name);
+        Imf::InputFile file(stream);
+        return read_exr_file(name, file);
+    });
 }
 
 }  // namespace raylane

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -50,5 +51,8 @@ void write_exr(const std::string& path, const ExrImage& image);
 /// corrupt file, one that is not an EXR, deep data, a layer of other than 1 or 3 channels, a data
 /// window outside the display window, or a frame larger than film.h allows.
 ExrImage read_exr(const std::string& path);
+
+/// read_exr of a file's bytes; `name` stands for the file in messages.
+ExrImage read_exr_from_memory(std::string_view bytes, const std::string& name);
 
 }  // namespace raylane

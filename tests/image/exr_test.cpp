@@ -158,7 +158,24 @@ TEST(Exr, MissingGarbageAndTruncatedFilesGiveOneLineNamingTheFile) {
         const std::string reason = test::input_error_of([&] { read_exr(cut); });
         EXPECT_EQ(reason.rfind(cut + ": ", 0), 0u) << n << ": " << reason;
         EXPECT_EQ(reason.find('\n'), std::string::npos) << n << ": " << reason;
+        const std::string in_memory = test::input_error_of(
+            [&] { read_exr_from_memory(std::string_view(bytes).substr(0, n), "cut"); });
+        EXPECT_EQ(in_memory.rfind("cut: ", 0), 0u) << n << ": " << in_memory;
     }
+}
+
+TEST(Exr, ReadsFromMemoryWhatItReadsFromTheFile) {
+    const test::TempDir dir("raylane_exr_");
+    const std::string file = (dir.path / "image.exr").string();
+    write_exr(file, test_image(true));
+    const ExrImage from_file = read_exr(file);
+    const ExrImage from_memory = read_exr_from_memory(file_bytes(file), "image");
+    EXPECT_EQ(from_memory.x0, from_file.x0);
+    EXPECT_EQ(from_memory.y1, from_file.y1);
+    EXPECT_EQ(from_memory.attributes, from_file.attributes);
+    ASSERT_EQ(from_memory.layers.size(), from_file.layers.size());
+    for (size_t l = 0; l < from_file.layers.size(); ++l)
+        EXPECT_EQ(from_memory.layers[l].film.pixels, from_file.layers[l].film.pixels);
 }
 
 TEST(Exr, ALayerOfTwoChannelsIsNotRead) {
