@@ -257,6 +257,18 @@ TEST(ExrCli, AssembleRefusesTruncatedGarbageHalfAndForeignFiles) {
     expect_refused(" " + (dir.path / "none.exr").string(), {"none.exr: no such file"});
 }
 
+TEST(ExrCli, AssembleCommandLineErrorsGiveOneLine) {
+    const CliRun help = run("assemble --help");
+    EXPECT_EQ(help.code, 0);
+    EXPECT_NE(help.out.find("--exr-float"), std::string::npos) << help.out;
+    for (const char* args : {"assemble", "assemble part.exr", "assemble part.exr -o frame.jpg",
+                             "assemble part.exr -o /no/such/dir/frame.png"}) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.code, 2) << args;
+        EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
+    }
+}
+
 TEST(ExrCli, AssembleOfAllAovsNeedsAnExr) {
     const test::TempDir dir("raylane_exr_cli_");
     const std::filesystem::path all = dir.path / "all.exr";
