@@ -15,6 +15,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <stdexcept>
 #include <string_view>
@@ -134,13 +135,88 @@ std::string exr_reason(const char* what, const std::string& path) {
     return s;
 }
 
-/// Whether the file starts with the four bytes every EXR starts with.
-bool has_exr_magic(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    unsigned char magic[4] = {};
-    in.read(reinterpret_cast<char*>(magic), 4);
-    return in.gcount() == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 &&
-           magic[3] == 0x01;
+/// The little-endian int32 at `at`.
+int32_t int32_at(std::string_view bytes, size_t at) {
+    uint32_t v = 0;
+    for (int k = 3; k >= 0; --k) v = v << 8 | static_cast<unsigned char>(bytes[at + size_t(k)]);
+    return static_cast<int32_t>(v);
+}
+
+/// Whether an attribute value of a type OpenEXR reads by its own content rather than by its
+/// declared size keeps to that size: a channel list (entries of a name and 16 bytes, then an
+/// empty name), a string vector (int32 lengths, each followed by that many bytes), a preview
+/// image (width, height, then 4 bytes a pixel).
+bool value_fits(std::string_view type, std::string_view value) {
+    if (type == "chlist") {
+        size_t at = 0;
+        for (;;) {
+            const size_t end = value.find('\0', at);
+            if (end == std::string_view::npos || end - at > 255) return false;
+            if (end == at) return end + 1 == value.size();
+            at = end + 1 + 16;
+            if (at > value.size()) return false;
+        }
+    }
+    if (type == "stringvector") {
+        for (size_t at = 0; at < value.size();) {
+            if (value.size() - at < 4) return false;
+            const int32_t n = int32_at(value, at);
+            if (n < 0 || size_t(n) > value.size() - at - 4) return false;
+            at += 4 + size_t(n);
+        }
+        return true;
+    }
+    if (type == "preview") {
+        if (value.size() < 8) return false;
+        const uint64_t w = uint32_t(int32_at(value, 0)), h = uint32_t(int32_at(value, 4));
+        const uint64_t pixels = (value.size() - 8) / 4;  // w * h compared without overflow
+        return (value.size() - 8) % 4 == 0 &&
+               (w == 0 ? pixels == 0 : h == pixels / w && pixels % w == 0);
+    }
+    return true;
+}
+
+/// Why OpenEXR should not be given these bytes, or "": they must be a single-part scan-line file
+/// whose header attributes fit in the file, with display and data windows of at most
+/// max_film_side a side. OpenEXR allocates what a header declares before it reads it (an
+/// attribute's size, a line offset table), so this walk of the header comes first.
+std::string header_problem(std::string_view bytes) {
+    if (bytes.size() < 8 || bytes.substr(0, 4) != std::string_view("\x76\x2f\x31\x01", 4))
+        return "not an OpenEXR file (no EXR magic number)";
+    const int32_t version = int32_at(bytes, 4);
+    if (version & 0x200) return "a tiled EXR (Raylane reads scan-line files)";
+    if (version & 0x800) return "holds deep data (Raylane reads flat images)";
+    if (version & 0x1000) return "a multi-part EXR (Raylane reads single-part files)";
+    const size_t longest_name = version & 0x400 ? 255 : 31;  // the long-names flag
+    size_t at = 8;
+    const auto text = [&](std::string& out) {
+        const size_t end = bytes.find('\0', at);
+        if (end == std::string_view::npos || end - at > longest_name) return false;
+        out = bytes.substr(at, end - at);
+        at = end + 1;
+        return true;
+    };
+    const std::string damaged = "the header is cut short or damaged";
+    for (std::string name, type;;) {
+        if (!text(name)) return damaged;
+        if (name.empty()) return {};
+        if (!text(type) || bytes.size() - at < 4) return damaged;
+        const int32_t size = int32_at(bytes, at);
+        at += 4;
+        if (size < 0 || size_t(size) > bytes.size() - at)
+            return "header attribute \"" + name + "\" holds " + std::to_string(size) +
+                   " bytes, past the end of the file (truncated or damaged)";
+        const std::string_view value = bytes.substr(at, size_t(size));
+        if (!value_fits(type, value)) return "header attribute \"" + name + "\" is damaged";
+        if (type == "box2i" && size == 16) {
+            const int64_t w = int64_t(int32_at(value, 8)) - int32_at(value, 0) + 1;
+            const int64_t h = int64_t(int32_at(value, 12)) - int32_at(value, 4) + 1;
+            if (w > max_film_side || h > max_film_side)
+                return name + " of " + std::to_string(w) + "x" + std::to_string(h) +
+                       " pixels (at most " + std::to_string(max_film_side) + " a side)";
+        }
+        at += size_t(size);
+    }
 }
 
 /// An EXR held in memory, for OpenEXR's reader: a read past the end throws.
@@ -165,8 +241,8 @@ class MemoryStream : public Imf::IStream {
 
 ExrImage read_exr_file(const std::string& path, Imf::InputFile& file) {
     const Imf::Header& header = file.header();
-    if (header.hasType() && header.type() != Imf::SCANLINEIMAGE && header.type() != Imf::TILEDIMAGE)
-        throw InputError(path + ": holds deep data (Raylane reads flat images)");
+    if (header.hasType() && header.type() != Imf::SCANLINEIMAGE)
+        throw InputError(path + ": not a scan-line image (Raylane reads flat scan-line files)");
     const Imath::Box2i display = header.displayWindow();
     const Imath::Box2i data = header.dataWindow();
     ExrImage image;
@@ -250,26 +326,26 @@ ExrImage read_or_explain(const std::string& name, Read&& read) {
     }
 }
 
-std::string no_magic(const std::string& name) {
-    return name + ": not a readable EXR: not an OpenEXR file (no EXR magic number)";
-}
-
 }  // namespace
 
 ExrImage read_exr(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
     if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory");
-    if (!has_exr_magic(path)) throw InputError(no_magic(path));
-    return read_or_explain(path, [&] {
-        Imf::InputFile file(path.c_str());
-        return read_exr_file(path, file);
-    });
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes;
+    try {
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    } catch (const std::bad_alloc&) {
+        throw InputError(path + ": too large to read");
+    }
+    if (!in && !in.eof()) throw InputError(path + ": cannot be read");
+    return read_exr_from_memory(bytes, path);
 }
 
 ExrImage read_exr_from_memory(std::string_view bytes, const std::string& name) {
-    if (bytes.substr(0, 4) != std::string_view("\x76\x2f\x31\x01", 4))
-        throw InputError(no_magic(name));
+    if (const std::string why = header_problem(bytes); !why.empty())
+        throw InputError(name + ": not a readable EXR: " + why);
     return read_or_explain(name, [&] {
         MemoryStream stream(bytes, name);
         Imf::InputFile file(stream);

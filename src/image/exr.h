@@ -45,11 +45,12 @@ std::string exr_attribute(const ExrImage& image, const std::string& name);
 /// path) when it cannot write, std::invalid_argument when the image is inconsistent.
 void write_exr(const std::string& path, const ExrImage& image);
 
-/// Reads an EXR's first part, every channel as float, grouped into layers by the text before
-/// the channel name's last dot, and its string attributes. The display window's origin becomes
-/// (0, 0). Throws InputError ("path: reason", one line) for a missing, unreadable, truncated or
-/// corrupt file, one that is not an EXR, deep data, a layer of other than 1 or 3 channels, a data
-/// window outside the display window, or a frame larger than film.h allows.
+/// Reads a single-part scan-line EXR, every channel as float, grouped into layers by the text
+/// before the channel name's last dot, and its string attributes. The display window's origin
+/// becomes (0, 0). Throws InputError ("path: reason", one line) for a missing, unreadable,
+/// truncated or corrupt file, one that is not an EXR, a tiled, multi-part or deep one, an attribute
+/// that claims more bytes than the file holds, a layer of other than 1 or 3 channels, a data window
+/// outside the display window, or a frame larger than film.h allows.
 ExrImage read_exr(const std::string& path);
 
 /// read_exr of a file's bytes; `name` stands for the file in messages.

@@ -178,6 +178,26 @@ TEST(Exr, ReadsFromMemoryWhatItReadsFromTheFile) {
         EXPECT_EQ(from_memory.layers[l].film.pixels, from_file.layers[l].film.pixels);
 }
 
+TEST(Exr, HeadersThatClaimMoreThanTheFileHoldsAreRefusedBeforeOpenExrReadsThem) {
+    const test::TempDir dir("raylane_exr_");
+    const std::string file = (dir.path / "image.exr").string();
+    write_exr(file, test_image(true));
+    const std::string bytes = file_bytes(file);
+    // the size of the raylane:scene attribute, after its name and type
+    const std::string key("raylane:scene\0string\0", 21);
+    const size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    std::string huge = bytes;
+    huge.replace(at + key.size(), 4, "\xff\xff\xff\x7f");
+    EXPECT_EQ(test::input_error_of([&] { read_exr_from_memory(huge, "huge"); }),
+              "huge: not a readable EXR: header attribute \"raylane:scene\" holds 2147483647 "
+              "bytes, past the end of the file (truncated or damaged)");
+    std::string tiled = bytes;
+    tiled[5] = char(tiled[5] | 0x02);  // the tiled flag, 0x200 of the version field
+    EXPECT_EQ(test::input_error_of([&] { read_exr_from_memory(tiled, "tiled"); }),
+              "tiled: not a readable EXR: a tiled EXR (Raylane reads scan-line files)");
+}
+
 TEST(Exr, ALayerOfTwoChannelsIsNotRead) {
     const test::TempDir dir("raylane_exr_");
     const std::string file = (dir.path / "uv.exr").string();
