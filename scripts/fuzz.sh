@@ -47,6 +47,7 @@ max_len_for() {
         obj) echo 8192 ;;
         ply) echo 8192 ;;
         image) echo 32768 ;;
+        exr) echo 8192 ;;
         *) echo 8192 ;;
     esac
 }
@@ -60,6 +61,7 @@ runs_for() {
         obj) echo 600000 ;;
         ply) echo 500000 ;;
         image) echo 100000 ;;
+        exr) echo 20000 ;;
         *) echo 200000 ;;
     esac
 }

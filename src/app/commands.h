@@ -15,6 +15,7 @@ void add_info_command(CLI::App& app, int& exit_code);
 void add_compare_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
 void add_scene_command(CLI::App& app, int& exit_code);
+void add_assemble_command(CLI::App& app, int& exit_code);
 
 /// What `raylane --version` prints: the version and the instruction set and packet width the
 /// packet path was built for.
@@ -35,8 +36,8 @@ CLI::Validator finite_non_negative();
 /// passes it on without leading zeros (CLI11 itself reads "010" as octal and clamps larger
 /// values). Use it with transform(): check() would pass on the original text.
 CLI::Validator whole_number();
-/// Checks, before any work, that an image path can be written: a .png or .pfm extension (any
-/// case), not a directory, in a directory that exists and that this user may write in.
+/// Checks, before any work, that an image path can be written: a .png, .pfm or .exr extension
+/// (any case), not a directory, in a directory that exists and that this user may write in.
 CLI::Validator image_output();
 
 /// The build parameters a --bvh value names.

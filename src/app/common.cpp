@@ -69,7 +69,7 @@ CLI::Validator image_output() {
     return CLI::Validator(
         [](std::string& path) -> std::string {
             if (image_format(path) == ImageFormat::none)
-                return path + ": unknown image extension (use .png or .pfm)";
+                return path + ": unknown image extension (use .png, .pfm or .exr)";
             std::error_code ec;
             if (std::filesystem::is_directory(path, ec)) return path + ": is a directory";
             const std::filesystem::path dir = std::filesystem::path(path).parent_path();
@@ -80,7 +80,7 @@ CLI::Validator image_output() {
                 return path + ": cannot write in " + folder + ": " + std::strerror(errno);
             return {};
         },
-        "FILE.png|FILE.pfm", "image_output");
+        "FILE.png|FILE.pfm|FILE.exr", "image_output");
 }
 
 BuildParams build_params(const std::string& bvh) {

@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
     raylane::add_compare_command(app, exit_code);
     raylane::add_report_command(app, exit_code);
     raylane::add_scene_command(app, exit_code);
+    raylane::add_assemble_command(app, exit_code);
     app.set_version_flag("--version", raylane::version_text());
     // CLI11 answers an unknown command word with "A subcommand is required": name it instead
     if (argc > 1 && argv[1][0] != '-') {

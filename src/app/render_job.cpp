@@ -21,7 +21,7 @@
 
 namespace raylane {
 
-RenderResult render_part(RenderJob& job, int frame, const PixelRect& region) {
+PartResult render_part(RenderJob& job, int frame, const PixelRect& region) {
     job.scene.camera = camera_at_frame(job.still, job.scene.camera_path, frame);
     RenderParams params = job.params;
     params.seed = frame_seed(job.params.seed, frame);
@@ -30,8 +30,17 @@ RenderResult render_part(RenderJob& job, int frame, const PixelRect& region) {
         job.progress_label = "frame " + std::to_string(frame);
         params.progress_label = job.progress_label.c_str();
     }
-    return job.scalar ? render_scalar(job.scene, job.accel, params)
-                      : render_packet(job.scene, job.accel, params);
+    PartResult part;
+    for (Aov aov : job.aovs) {
+        params.aov = aov;
+        if (job.aovs.size() > 1 && job.first_frame == job.last_frame)
+            params.progress_label = aov_name(aov);
+        RenderResult r = job.scalar ? render_scalar(job.scene, job.accel, params)
+                                    : render_packet(job.scene, job.accel, params);
+        if (part.films.empty()) part.stats = r.stats;
+        part.films.push_back({aov, std::move(r.film)});
+    }
+    return part;
 }
 
 namespace {
@@ -154,33 +163,35 @@ PixelRect parse_region(const std::vector<int>& crop, const std::string& tile, in
     }
 }
 
-void write_frame(const RenderJob& job, int frame, Film film, const RenderStats& s) {
+void write_frame(const RenderJob& job, int frame, std::vector<AovFilm> films,
+                 const RenderStats& s) {
     const RenderParams& params = job.params;
     const std::string output = frame_output(job.output, frame);
-    const bool colour = params.aov == Aov::color;
-    const Camera& cam = job.scene.camera;
-    const PixelRect region =
-        job.region.empty() ? PixelRect{0, 0, cam.width, cam.height} : job.region;
+    const Aov aov = films.at(0).aov;
+    const bool colour = aov == Aov::color;
+    const Camera& cam = job.still;
+    const PixelRect whole{0, 0, cam.width, cam.height};
+    const PixelRect region = job.region.empty() ? whole : job.region;
     const uint64_t samples = uint64_t(region.width()) * uint64_t(region.height()) *
                              uint64_t(params.spp > 0 ? params.spp : 1);
     const std::vector<std::string> warnings =
-        colour ? render_warnings(film, s, samples) : std::vector<std::string>{};
-    const bool report_look = colour && job.scene.tonemap == Tonemap::report;
-    // in place: the rendered film is not needed afterwards (a copy is 25 MB of fresh pages).
-    // A PFM holds an AOV's raw values (scene units, counts); a PNG its mapping, named by `scale`.
-    const bool raw = !colour && image_format(output) == ImageFormat::pfm;
+        colour ? render_warnings(films[0].film, s, samples) : std::vector<std::string>{};
+    const bool exr = image_format(output) == ImageFormat::exr;
+    // a PFM or EXR holds an AOV's raw values (scene units, counts); a PNG its mapping (`scale`)
+    const bool raw = !colour && !exr && image_format(output) == ImageFormat::pfm;
+    PartInfo info = job.info;
+    set_part_setting(info, "frame", std::to_string(frame));
     std::string scale;
-    if (report_look) {
-        film = hue_preserving_clamp(std::move(film));
-    } else if (!raw) {
-        AovView view = visualise_aov(std::move(film), params.aov);
-        film = std::move(view.film);
-        scale = std::move(view.scale);
+    if (exr && !job.region.empty()) {  // --crop or --tile: a part of the frame
+        write_part(output, std::move(films), region.x0, region.y0, cam.width, cam.height, info);
+    } else {
+        OutputOptions out;
+        out.tonemap = job.scene.tonemap;
+        out.threads = params.threads;
+        out.exr_float = job.exr_float;
+        if (exr) out.attributes = frame_attributes(info);
+        scale = write_render_output(output, std::move(films), out);
     }
-    // the bytes and the PNG's stream are made in parallel: on the threads --threads allows
-    tbb::task_arena(params.threads > 0 ? params.threads : tbb::task_arena::automatic).execute([&] {
-        write_image(output, film, colour && !report_look ? Encoding::srgb : Encoding::linear);
-    });
 
     const double mrays = s.seconds > 0 ? double(s.total_rays()) / s.seconds * 1e-6 : 0.0;
     if (job.first_frame != job.last_frame) {  // one line a frame
@@ -211,8 +222,8 @@ void write_frame(const RenderJob& job, int frame, Film film, const RenderStats& 
                     static_cast<unsigned long long>(s.nan_samples),
                     static_cast<unsigned long long>(s.inf_samples));
     if (!scale.empty()) std::printf("scale      %s\n", scale.c_str());
-    if (raw)
-        std::printf("values     raw %s (docs/scene-format.md, Outputs)\n", aov_name(params.aov));
+    if (raw || (exr && job.aovs.size() == 1 && !colour))
+        std::printf("values     raw %s (docs/scene-format.md, Outputs)\n", aov_name(aov));
     for (const std::string& w : warnings) std::printf("warning    %s\n", w.c_str());
     std::printf("image      %s\n", output.c_str());
     std::fflush(stdout);
@@ -224,8 +235,9 @@ void print_header(const RenderJob& job, int ranks) {
         job.params.threads > 0 ? job.params.threads : tbb::info::default_concurrency();
     const Camera& cam = job.still;
     std::printf("scene      %s\n", job.scene.source.c_str());
-    std::printf("resolution %dx%d, %d spp, %s\n", cam.width, cam.height, job.params.spp,
-                aov_name(job.params.aov));
+    std::printf(
+        "resolution %dx%d, %d spp, %s\n", cam.width, cam.height, job.params.spp,
+        job.aovs.size() > 1 ? "color, normal, depth and bvh-cost" : aov_name(job.params.aov));
     if (!job.region.empty() && !(job.region == PixelRect{0, 0, cam.width, cam.height})) {
         const PixelRect& r = job.region;
         std::printf("part       x %d..%d, y %d..%d (%dx%d pixels)\n", r.x0, r.x1 - 1, r.y0,

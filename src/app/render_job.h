@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "app/part.h"
+#include "app/write_output.h"
 #include "render/render_params.h"
 #include "scene/scene.h"
 
@@ -15,9 +17,12 @@ struct RenderJob {
     Scene scene;   ///< its camera is the frame's while a frame renders (render_part)
     Camera still;  ///< the scene's own camera, which the animation moves
     Accel accel;
-    RenderParams params;  ///< the user's seed; no region
+    RenderParams params;    ///< the user's seed; no region; params.aov is aovs[0]
+    std::vector<Aov> aovs;  ///< what each frame renders: one AOV, or all four (--aov all)
     bool scalar = false;
-    std::string output;  ///< a file, or a pattern with a frame number (frame_output)
+    bool exr_float = false;  ///< EXR channels as 32-bit floats (parts always are)
+    PartInfo info;           ///< the scene's hash and the settings, for EXR headers
+    std::string output;      ///< a file, or a pattern with a frame number (frame_output)
     int first_frame = 0, last_frame = 0;
     PixelRect region;            ///< the part of each frame to render (the whole frame by default)
     std::string bvh = "median";  ///< the --bvh build, for the summary
@@ -25,9 +30,15 @@ struct RenderJob {
     std::string progress_label;            ///< "frame N" while frame N renders
 };
 
-/// Renders `region` of frame `frame`: the frame's camera and seed (frame_seed), the job's
-/// renderer. The film is the region's size.
-RenderResult render_part(RenderJob& job, int frame, const PixelRect& region);
+/// A frame's (or a part's) films, one per AOV of the job, and the counts of the first.
+struct PartResult {
+    std::vector<AovFilm> films;
+    RenderStats stats;
+};
+
+/// Renders `region` of frame `frame`, every AOV of the job: the frame's camera and seed
+/// (frame_seed), the job's renderer. The films are the region's size.
+PartResult render_part(RenderJob& job, int frame, const PixelRect& region);
 
 /// The file name of frame `frame`: the pattern's one printf conversion (%d, %4d or %04d)
 /// replaced by the frame number, %% by %. A pattern without one is the name of every frame.
@@ -37,10 +48,11 @@ std::string frame_output(const std::string& pattern, int frame);
 /// (or a second one).
 bool has_frame_number(const std::string& pattern);
 
-/// Writes a frame's (or a part's) film to its file as `raylane render` does, and prints what a
-/// frame says (one line per frame when there are several). `film` is taken by value: pass an
-/// rvalue to map it in place.
-void write_frame(const RenderJob& job, int frame, Film film, const RenderStats& stats);
+/// Writes a frame's films to its file (write_render_output; a part of a frame to an .exr is a
+/// part file, write_part) and prints what a frame says (one line per frame when there are
+/// several). The films are taken by value: pass an rvalue to map them in place.
+void write_frame(const RenderJob& job, int frame, std::vector<AovFilm> films,
+                 const RenderStats& stats);
 
 /// The frames A..B of --frames ("A..B", "A", or "all" of the scene's animation), checked against
 /// the animation's frames.

@@ -40,7 +40,7 @@ enum Tag : int {
     tag_ask = 1,     ///< worker -> 0: an int, ignored
     tag_unit = 2,    ///< 0 -> worker: the unit's index, or -1 when none is left
     tag_header = 3,  ///< worker -> 0: a ResultHeader
-    tag_pixels = 4,  ///< worker -> 0: the unit's pixels, 3 floats each, row by row
+    tag_pixels = 4,  ///< worker -> 0: the unit's pixels (unit_floats)
 };
 
 /// A row of tiles, or a piece of one, of one frame.
@@ -108,30 +108,49 @@ std::vector<Unit> make_units(const RenderJob& job, int ranks) {
     return units;
 }
 
-/// Rank 0's frames in progress: their films (the region's size) and the units still missing.
+/// A unit's films (one per AOV of the job) as one run of floats: film after film, each row by
+/// row, 3 floats a pixel. What a worker sends.
+std::vector<float> unit_floats(const PartResult& part) {
+    static_assert(sizeof(vec3) == 3 * sizeof(float));
+    std::vector<float> data;
+    for (const AovFilm& f : part.films) {
+        const float* p = reinterpret_cast<const float*>(f.film.pixels.data());
+        data.insert(data.end(), p, p + f.film.pixels.size() * 3);
+    }
+    return data;
+}
+
+/// Rank 0's frames in progress: their films (the region's size, one per AOV) and the units
+/// still missing.
 struct Gather {
-    Gather(const RenderJob& j, const PixelRect& r, int rows)
-        : job(j), region(r), units_per_frame(rows) {}
+    Gather(const RenderJob& j, const PixelRect& r, int units)
+        : job(j), region(r), units_per_frame(units) {}
     const RenderJob& job;
     PixelRect region;
     int units_per_frame;
-    std::map<int, Film> films;
+    std::map<int, std::vector<AovFilm>> films;
     std::map<int, int> missing;
     std::map<int, RenderStats> stats;
     double start = now_seconds();
     double writing = 0.0;  ///< seconds spent writing frames
 
-    void add(int frame, const PixelRect& rect, const float* rgb, const RenderStats& s) {
+    /// Puts a unit's floats (unit_floats) in its frame; writes the frame when it is whole.
+    void add(int frame, const PixelRect& rect, const float* data, const RenderStats& s) {
         auto [it, fresh] = films.try_emplace(frame);
         if (fresh) {
-            it->second = make_film(region.width(), region.height());
+            for (Aov aov : job.aovs)
+                it->second.push_back({aov, make_film(region.width(), region.height())});
             missing[frame] = units_per_frame;
         }
-        Film& film = it->second;
-        for (int y = rect.y0; y < rect.y1; ++y) {
-            std::memcpy(&film.at(rect.x0 - region.x0, y - region.y0),
-                        rgb + size_t(y - rect.y0) * size_t(rect.width()) * 3,
-                        size_t(rect.width()) * sizeof(vec3));
+        const size_t per_film = size_t(rect.width()) * size_t(rect.height()) * 3;
+        for (size_t k = 0; k < it->second.size(); ++k) {
+            Film& film = it->second[k].film;
+            const float* rgb = data + k * per_film;
+            for (int y = rect.y0; y < rect.y1; ++y) {
+                std::memcpy(&film.at(rect.x0 - region.x0, y - region.y0),
+                            rgb + size_t(y - rect.y0) * size_t(rect.width()) * 3,
+                            size_t(rect.width()) * sizeof(vec3));
+            }
         }
         RenderStats& fs = stats[frame];
         fs.add_counts(s);
@@ -140,17 +159,11 @@ struct Gather {
         fs.seconds = now_seconds() - start;
         start = now_seconds();
         const double t = now_seconds();
-        write_frame(job, frame, std::move(film), fs);
+        write_frame(job, frame, std::move(it->second), fs);
         writing += now_seconds() - t;
         films.erase(frame), missing.erase(frame), stats.erase(frame);
     }
 };
-
-/// Pixels of a film as floats, row by row.
-const float* film_floats(const Film& film) {
-    static_assert(sizeof(vec3) == 3 * sizeof(float));
-    return reinterpret_cast<const float*>(film.pixels.data());
-}
 
 /// A pause between two polls of a wait: a blocking MPI call polls without one, and takes a core
 /// from the ranks that render beside it.
@@ -233,7 +246,8 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
                 MPI_Recv(&r->header, sizeof r->header, MPI_BYTE, st.MPI_SOURCE, tag_header,
                          MPI_COMM_WORLD, MPI_STATUS_IGNORE);
                 const Unit& u = units.at(size_t(r->header.unit));
-                r->pixels.resize(size_t(u.rect.width()) * size_t(u.rect.height()) * 3);
+                r->pixels.resize(size_t(u.rect.width()) * size_t(u.rect.height()) * 3 *
+                                 job.aovs.size());
                 MPI_Irecv(r->pixels.data(), static_cast<int>(r->pixels.size()), MPI_FLOAT,
                           st.MPI_SOURCE, tag_pixels, MPI_COMM_WORLD, &r->request);
                 receiving.push_back(std::move(r));
@@ -248,8 +262,8 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
             any = any || done != 0;
             return done != 0;
         });
-        own_done = take_own([&](size_t unit, const RenderResult& r) {
-            add(unit, film_floats(r.film), r.stats);
+        own_done = take_own([&](size_t unit, const PartResult& r) {
+            add(unit, unit_floats(r).data(), r.stats);
             any = true;
         });
         if (any) {
@@ -271,7 +285,7 @@ MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bo
     // rank 0's own results, from the main thread to the service thread
     struct Own {
         size_t unit;
-        RenderResult result;
+        PartResult result;
     };
     std::mutex own_mutex;
     std::vector<Own> own;
@@ -298,7 +312,7 @@ MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bo
     for (;;) {
         const size_t u = next.fetch_add(1);
         if (u >= units.size()) break;
-        RenderResult r = render_part(job, units[u].frame, units[u].rect);
+        PartResult r = render_part(job, units[u].frame, units[u].rect);
         ++costs.units;
         std::lock_guard<std::mutex> lock(own_mutex);
         own.push_back({u, std::move(r)});
@@ -318,7 +332,7 @@ MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bo
 /// waiting for them to arrive (rank 0 takes them between its own units).
 MpiCosts run_worker(RenderJob& job, const std::vector<Unit>& units) {
     struct Sent {
-        RenderResult result;
+        std::vector<float> data;  ///< unit_floats
         ResultHeader header;
         MPI_Request requests[2];
     };
@@ -333,15 +347,16 @@ MpiCosts run_worker(RenderJob& job, const std::vector<Unit>& units) {
         MPI_Send(&ask, 1, MPI_INT, 0, tag_ask, MPI_COMM_WORLD);
         costs.waiting += now_seconds() - t;
         const Unit& u = units.at(size_t(unit));
-        auto s = std::make_unique<Sent>();
-        s->result = render_part(job, u.frame, u.rect);
+        const PartResult part = render_part(job, u.frame, u.rect);
         ++costs.units;
         t = now_seconds();
-        to_header(unit, s->result.stats, s->header);
+        auto s = std::make_unique<Sent>();
+        s->data = unit_floats(part);
+        to_header(unit, part.stats, s->header);
         MPI_Isend(&s->header, sizeof s->header, MPI_BYTE, 0, tag_header, MPI_COMM_WORLD,
                   &s->requests[0]);
-        MPI_Isend(film_floats(s->result.film), static_cast<int>(s->result.film.pixels.size() * 3),
-                  MPI_FLOAT, 0, tag_pixels, MPI_COMM_WORLD, &s->requests[1]);
+        MPI_Isend(s->data.data(), static_cast<int>(s->data.size()), MPI_FLOAT, 0, tag_pixels,
+                  MPI_COMM_WORLD, &s->requests[1]);
         sent.push_back(std::move(s));
         // free what has arrived
         std::erase_if(sent, [](std::unique_ptr<Sent>& p) {

@@ -1,4 +1,4 @@
-// image: film encodings, the PNG writer, and write_image (PNG or PFM, pfm.h).
+// image: film encodings, the PNG writer, and write_image (PNG, PFM in pfm.h, EXR in exr.h).
 #include "image/film.h"
 
 #include <tbb/blocked_range.h>
@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "image/deflate.h"
+#include "image/exr.h"
 #include "image/pfm.h"
 #include "image/write_file.h"
 
@@ -146,7 +147,10 @@ ImageFormat image_format(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".png" ? ImageFormat::png : ext == ".pfm" ? ImageFormat::pfm : ImageFormat::none;
+    return ext == ".png"   ? ImageFormat::png
+           : ext == ".pfm" ? ImageFormat::pfm
+           : ext == ".exr" ? ImageFormat::exr
+                           : ImageFormat::none;
 }
 
 void write_image(const std::string& path, const Film& film, Encoding encoding) {
@@ -157,10 +161,16 @@ void write_image(const std::string& path, const Film& film, Encoding encoding) {
         case ImageFormat::png:
             write_png(path, film, encoding);
             return;
+        case ImageFormat::exr: {
+            ExrImage image = make_exr_image(film.width, film.height);
+            image.layers.push_back({"", {"R", "G", "B"}, film});
+            write_exr(path, image);
+            return;
+        }
         case ImageFormat::none:
             break;
     }
-    throw std::runtime_error(path + ": unknown image extension (use .png or .pfm)");
+    throw std::runtime_error(path + ": unknown image extension (use .png, .pfm or .exr)");
 }
 
 vec3 false_colour(float x) {

@@ -76,13 +76,14 @@ void write_png(const std::string& path, const Film& film, Encoding encoding);
 /// zlib stream of image/deflate.h.
 std::vector<uint8_t> encode_png(const Film& film, Encoding encoding);
 
-/// The image formats write_image writes, named by the path's extension in any case (.png, .pfm);
-/// none for any other.
-enum class ImageFormat : uint8_t { none, png, pfm };
+/// The image formats write_image writes, named by the path's extension in any case (.png, .pfm,
+/// .exr); none for any other.
+enum class ImageFormat : uint8_t { none, png, pfm, exr };
 ImageFormat image_format(const std::string& path);
 
-/// Writes PNG (write_png) or PFM (pfm.h, write_pfm) by the file extension (image_format); throws
-/// for any other.
+/// Writes PNG (write_png), PFM (pfm.h, write_pfm) or EXR (exr.h, write_exr: the film as R, G, B
+/// halves) by the file extension (image_format); throws for any other. `encoding` applies to
+/// PNG only.
 void write_image(const std::string& path, const Film& film, Encoding encoding);
 
 /// The report's tone mapping (report-scenes.md 1.3): a pixel whose largest channel exceeds 1
