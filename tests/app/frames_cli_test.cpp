@@ -92,4 +92,52 @@ TEST(FramesCli, CropHoldsTheWholeFramesPixels) {
     }
 }
 
+/// The parts of --tile I/N for N = 1, 2, 7 and 16, and of crops that cut the frame at odd
+/// places, joined by `assemble`: the bytes of the whole frame's PNG and PFM. The built-in scene
+/// and the glass bunny (secondary rays in the wavefront).
+TEST(FramesCli, PartsAssembleToTheWholeFrame) {
+    TempDir dir("raylane_frames_");
+    for (const std::string& scene :
+         {std::string(), std::string(RAYLANE_SOURCE_DIR "/scenes/fig10_glass_bunny.json")}) {
+        const std::string args = "render -q " + scene + " --width 80 --height 64 --spp 2";
+        const std::string png = (dir.path / "whole.png").string();
+        const std::string pfm = (dir.path / "whole.pfm").string();
+        ASSERT_EQ(run(args + " -o " + png).code, 0);
+        ASSERT_EQ(run(args + " -o " + pfm).code, 0);
+        auto assemble_equals_whole = [&](const std::string& parts, const std::string& what) {
+            for (const std::string& whole : {png, pfm}) {
+                const std::string out =
+                    (dir.path / ("joined" + std::filesystem::path(whole).extension().string()))
+                        .string();
+                const CliRun a = run("assemble " + parts + " -o " + out);
+                ASSERT_EQ(a.code, 0) << what << ": " << a.err;
+                EXPECT_TRUE(slurp(out) == slurp(whole)) << scene << ", " << what << ", " << out;
+            }
+        };
+        for (int n : {1, 2, 7, 16}) {
+            std::string parts;
+            for (int i = 0; i < n; ++i) {
+                const std::string part =
+                    (dir.path / ("part" + std::to_string(i) + ".exr")).string();
+                const CliRun r = run(args + " --tile " + std::to_string(i) + "/" +
+                                     std::to_string(n) + " -o " + part);
+                ASSERT_EQ(r.code, 0) << r.err;
+                parts += " " + part;
+            }
+            assemble_equals_whole(parts, std::to_string(n) + " tiles");
+            for (int i = 0; i < n; ++i)
+                std::filesystem::remove(dir.path / ("part" + std::to_string(i) + ".exr"));
+        }
+        // one pixel, the rest of its row, one column, and the rest
+        const char* crops[] = {"0 0 1 1", "1 0 80 1", "0 1 1 64", "1 1 80 64"};
+        std::string parts;
+        for (int i = 0; i < 4; ++i) {
+            const std::string part = (dir.path / ("crop" + std::to_string(i) + ".exr")).string();
+            ASSERT_EQ(run(args + " --crop " + crops[i] + " -o " + part).code, 0);
+            parts += " " + part;
+        }
+        assemble_equals_whole(parts, "crops");
+    }
+}
+
 }  // namespace

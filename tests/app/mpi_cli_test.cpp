@@ -42,6 +42,8 @@ TEST(MpiCli, EveryRankCountWritesTheImageOfOneProcess) {
         {scenes + "dragon.json --width 96", "dragon.png", 1},
         {scenes + "fig10_glass_bunny.json --width 40 --spp 4", "bunny.pfm", 1},
         {scenes + "dragon_turntable.json --width 64 --frames 10..12", "turn_%02d.png", 3},
+        {"--width 64 --height 48 --aov all", "all.exr", 1},
+        {"--width 64 --height 48 --tile 3/5", "part.exr", 1},
     };
     for (const Case& c : cases) {
         auto file = [&](const std::string& who, int frame) {
