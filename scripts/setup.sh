@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(cmake ninja-build g++ clang libclang-rt-14-dev libxsimd-dev libtbb-dev libglm-dev
           libstb-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
-          libopenexr-dev)
+          libopenexr-dev libopenmpi-dev openmpi-bin procps)
 # Embree is only for the baseline benchmark; the renderer never links it.
 [ "${RAYLANE_NO_EMBREE:-0}" = 1 ] || packages+=(libembree-dev)
 missing=()

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "scene/camera_path.h"
 #include "scene/features.h"
 
 namespace raylane {
@@ -43,6 +44,10 @@ int run_info(const std::string& path, const std::string& bvh) {
     std::printf("scene      %s\n", scene.source.c_str());
     std::printf("camera     %dx%d, %d spp, %s fov %.1f deg\n", c.width, c.height, c.spp,
                 c.fov_axis == FovAxis::vertical ? "vertical" : "horizontal", double(c.fov_deg));
+    if (const int frames = frame_count(scene.camera_path); frames > 1) {
+        std::printf("animation  %d frames (0..%d), %s\n", frames, frames - 1,
+                    scene.camera_path.turntable_frames > 0 ? "turntable" : "camera path");
+    }
     std::printf(
         "objects    %zu (%zu spheres, %zu boxes, %zu cylinders, %zu planes, %zu triangles, "
         "%zu meshes)\n",

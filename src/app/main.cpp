@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/render_job.h"
 #include "core/error.h"
 #include "core/pages.h"
 #include "render/tiles.h"
@@ -51,6 +52,8 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
+    // under an MPI launcher every process meets the same bad command line: one of them says so
+    const bool quiet = raylane::launched_by_mpi() && raylane::rank_from_environment() != 0;
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     try {
@@ -62,13 +65,13 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "raylane: %s (see raylane --help)\n", e.what());
+        if (!quiet) std::fprintf(stderr, "raylane: %s (see raylane --help)\n", e.what());
         return 2;
     } catch (const raylane::InputError& e) {
-        std::fprintf(stderr, "raylane: %s\n", e.what());
+        if (!quiet) std::fprintf(stderr, "raylane: %s\n", e.what());
         return 2;
     } catch (const raylane::Cancelled&) {
-        std::fprintf(stderr, "raylane: interrupted; nothing written\n");
+        if (!quiet) std::fprintf(stderr, "raylane: interrupted; nothing written\n");
         return 128 + (stop_signal != 0 ? static_cast<int>(stop_signal) : SIGINT);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "raylane: error: %s\n", e.what());

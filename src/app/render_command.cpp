@@ -1,5 +1,7 @@
-// app: `raylane render [SCENE] [-o FILE] [--spp N] [--threads N] [--width W --height H] [--aov A]`.
-// The output is written by write_output.h, which `assemble` shares.
+// app: `raylane render [SCENE] [-o FILE] [--spp N] [--threads N] [--width W --height H] [--aov A]
+// [--frames A..B] [--crop X0 Y0 X1 Y1 | --tile I/N]`: the options and the plain render, frame
+// after frame; under mpirun, app/render_mpi.cpp. The files are written by write_output.h and
+// part.h, which `assemble` shares.
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
@@ -10,14 +12,12 @@
 #include <memory>
 
 #include "app/commands.h"
-#include "app/part.h"
-#include "app/write_output.h"
+#include "app/render_job.h"
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/model_scene.h"
-#include "render/render_packet.h"
-#include "render/render_scalar.h"
 #include "render/warnings.h"
+#include "scene/camera_path.h"
 #include "scene/features.h"
 #include "simd/simd.h"
 
@@ -26,6 +26,8 @@ namespace {
 
 struct RenderOptions {
     std::string scene_path, output, aov = "color", path = "packet", bvh = "median";
+    std::string frames, tile;
+    std::vector<int> crop;
     int spp = 0, threads = 0, width = 0, height = 0;
     uint32_t seed = 0;
     bool quiet = false;
@@ -33,7 +35,9 @@ struct RenderOptions {
     bool exr_float = false;
 };
 
-std::string default_output(const RenderOptions& o) {
+/// SCENE.png (SCENE-AOV.png), with _I-N for part I of N, _crop for a crop, _%04d when several
+/// frames render; .exr for parts and --aov all.
+std::string default_output(const RenderOptions& o, bool frames) {
     // the file name without its extension, .obj.gz and .ply.gz whole
     const std::string name = std::filesystem::path(o.scene_path).filename().string();
     const size_t ext = is_model_file(o.scene_path)
@@ -41,113 +45,105 @@ std::string default_output(const RenderOptions& o) {
                            : std::filesystem::path(name).extension().string().size();
     std::string stem = o.scene_path.empty() ? "builtin" : name.substr(0, name.size() - ext);
     if (o.aov != "color") stem += "-" + o.aov;
-    return stem + (o.aov == "all" ? ".exr" : ".png");
+    if (!o.tile.empty()) {  // part I of N: SCENE_I-N
+        std::string part = o.tile;
+        std::replace(part.begin(), part.end(), '/', '-');
+        stem += "_" + part;
+    }
+    if (!o.crop.empty()) stem += "_crop";
+    if (frames) stem += "_%04d";
+    // --aov all and the parts of a frame are EXR files
+    return stem + (o.aov == "all" || !o.crop.empty() || !o.tile.empty() ? ".exr" : ".png");
+}
+
+/// The job: the scene at its resolution, the frames and part to render, the renderer's options.
+RenderJob make_job(const RenderOptions& o, Scene scene, const std::vector<Aov>& aovs) {
+    RenderJob job;
+    job.scene = std::move(scene);
+    apply_resolution(job.scene.camera, o.width, o.height);
+    job.still = job.scene.camera;
+    if (!o.frames.empty())
+        parse_frames(o.frames, frame_count(job.scene.camera_path), job.first_frame, job.last_frame);
+    job.region = parse_region(o.crop, o.tile, job.still.width, job.still.height);
+    job.output = o.output.empty() ? default_output(o, job.first_frame != job.last_frame) : o.output;
+    if (o.output.empty()) {
+        if (const std::string why = image_output()(job.output); !why.empty())
+            throw InputError("output: " + why);
+    }
+    if (job.first_frame != job.last_frame && !has_frame_number(job.output)) {
+        throw InputError("-o " + job.output + ": " +
+                         std::to_string(job.last_frame - job.first_frame + 1) +
+                         " frames need a frame number in the file name, e.g. out/frame_%04d.png");
+    }
+    job.aovs = aovs;
+    job.params.aov = aovs[0];
+    job.params.spp = o.spp > 0 ? o.spp : job.still.spp;
+    job.params.threads = worker_threads(o.threads);
+    job.params.seed = o.seed;
+    job.params.progress = !o.quiet;
+    job.scalar = o.path == "scalar";
+    job.exr_float = o.exr_float;
+    job.bvh = o.bvh;
+    job.info = make_part_info(job.scene, job.params, o.path, o.bvh);
+    if (aovs.size() > 1) set_part_setting(job.info, "aov", "all");
+    return job;
 }
 
 int run_render(const RenderOptions& o) {
-    RenderParams params;
-    const bool all_aovs = o.aov == "all";  // colour, then the AOVs, as layers of one EXR
-    if (!all_aovs && !parse_aov(o.aov, params.aov))
-        throw InputError("--aov: unknown output \"" + o.aov +
-                         "\" (use color, normal, depth, bvh-cost or all)");
-    // -o is checked as the command line is read; the default output here, before the render
-    const std::string output = o.output.empty() ? default_output(o) : o.output;
-    if (all_aovs && image_format(output) != ImageFormat::exr)
-        throw InputError(output +
+    // --aov all: colour, then the AOVs, as layers of one EXR
+    std::vector<Aov> aovs{Aov::color, Aov::normal, Aov::depth, Aov::bvh_cost};
+    if (o.aov != "all") {
+        aovs.resize(1);
+        if (!parse_aov(o.aov, aovs[0]))
+            throw InputError("--aov: unknown output \"" + o.aov +
+                             "\" (use color, normal, depth, bvh-cost or all)");
+    }
+    if (o.aov == "all" && !o.output.empty() && image_format(o.output) != ImageFormat::exr)
+        throw InputError(o.output +
                          ": --aov all writes its four outputs as the layers of one EXR; "
                          "use -o FILE.exr");
-    if (o.output.empty()) {
-        if (const std::string why = image_output()(output); !why.empty())
-            throw InputError("output: " + why);
+    if (launched_by_mpi()) {
+#ifdef RAYLANE_MPI
+        return render_over_mpi([&] {
+            const double t_load = now_seconds();
+            RenderJob job = make_job(o, load_command_scene(o.scene_path), aovs);
+            job.load_ms = elapsed_ms(t_load);
+            return job;
+        });
+#else
+        throw InputError(
+            "started by mpirun, but this raylane was built without MPI: run it alone (it "
+            "uses every core), or build it where Open MPI is installed (libopenmpi-dev)");
+#endif
     }
     const double t_load = now_seconds();
-    Scene scene = load_command_scene(o.scene_path);
-    const double load_ms = elapsed_ms(t_load);
-    apply_resolution(scene.camera, o.width, o.height);
-    params.spp = o.spp > 0 ? o.spp : scene.camera.spp;
-    params.threads = worker_threads(o.threads);
-    params.seed = o.seed;
-    params.progress = !o.quiet;
-    const int threads = params.threads > 0 ? params.threads : tbb::info::default_concurrency();
-    // what is being rendered, before the progress line
-    std::printf("scene      %s\n", scene.source.c_str());
-    std::printf("resolution %dx%d, %d spp, %s\n", scene.camera.width, scene.camera.height,
-                params.spp, all_aovs ? "color, normal, depth and bvh-cost" : aov_name(params.aov));
-    if (o.path == "scalar")
-        std::printf("path       scalar, %d threads\n", threads);
-    else
-        std::printf("path       packet (W = %d), %d threads\n", native_width, threads);
-    std::fflush(stdout);
+    RenderJob job = make_job(o, load_command_scene(o.scene_path), aovs);
+    job.load_ms = elapsed_ms(t_load);
+    print_header(job, 1);
 
     const double t_build = now_seconds();
-    const Accel accel = build_accel(scene, build_params(o.bvh));
-    const double build_ms = elapsed_ms(t_build);
-    for (const std::string& w : scene_warnings(scene, accel))
+    job.accel = build_accel(job.scene, build_params(o.bvh));
+    job.build_ms = elapsed_ms(t_build);
+    for (const std::string& w : scene_warnings(job.scene, job.accel))
         std::printf("warning    %s\n", w.c_str());
     std::fflush(stdout);
 
-    const auto render = [&](const RenderParams& p) {
-        return o.path == "scalar" ? render_scalar(scene, accel, p) : render_packet(scene, accel, p);
-    };
-    RenderResult result = render(params);
-    std::vector<AovFilm> films;
-    films.push_back({params.aov, Film{}});
-    for (Aov aov : {Aov::normal, Aov::depth, Aov::bvh_cost}) {
-        if (!all_aovs) break;
-        RenderParams p = params;
-        p.aov = aov;
-        p.progress_label = aov_name(aov);
-        films.push_back({aov, render(p).film});
+    RenderStats total;
+    const double t_frames = now_seconds();
+    for (int frame = job.first_frame; frame <= job.last_frame; ++frame) {
+        PartResult part = render_part(job, frame, job.region);
+        write_frame(job, frame, std::move(part.films), part.stats);
+        total.add_counts(part.stats);
     }
-    const bool colour = params.aov == Aov::color;
-    const uint64_t samples =
-        uint64_t(scene.camera.width) * uint64_t(scene.camera.height) * uint64_t(params.spp);
-    const std::vector<std::string> warnings =
-        colour ? render_warnings(result.film, result.stats, samples) : std::vector<std::string>{};
-    // PNG and PFM as they were; an EXR holds the raw films and what made them
-    const bool raw = !colour && image_format(output) != ImageFormat::png;
-    OutputOptions out;
-    out.tonemap = scene.tonemap;
-    out.threads = params.threads;
-    out.exr_float = o.exr_float;
-    if (image_format(output) == ImageFormat::exr) {
-        PartInfo info = make_part_info(scene, params, o.path, o.bvh);
-        if (all_aovs) set_part_setting(info, "aov", "all");
-        out.attributes = frame_attributes(info);
+    if (job.first_frame != job.last_frame) {
+        std::printf("frames     %d in %.1f s (load %.1f ms, build %.1f ms)\n",
+                    job.last_frame - job.first_frame + 1, elapsed_ms(t_frames) / 1000.0,
+                    job.load_ms, job.build_ms);
     }
-    films[0].film = std::move(result.film);
-    const std::string scale = write_render_output(output, std::move(films), out);
-
-    const RenderStats& s = result.stats;
-    std::printf("features   %s\n", feature_names(scene_features(scene)).c_str());
-    if (o.bvh != "median") std::printf("bvh        %s\n", o.bvh.c_str());
-    std::printf("rays       %llu primary, %llu shadow",
-                static_cast<unsigned long long>(s.primary_rays),
-                static_cast<unsigned long long>(s.shadow_rays));
-    if (s.reflection_rays > 0)
-        std::printf(", %llu reflection", static_cast<unsigned long long>(s.reflection_rays));
-    if (s.refraction_rays > 0)
-        std::printf(", %llu refraction", static_cast<unsigned long long>(s.refraction_rays));
-    if (s.glossy_rays > 0)
-        std::printf(", %llu glossy", static_cast<unsigned long long>(s.glossy_rays));
-    std::printf("\n");
-    std::printf("time       load %.1f ms, build %.1f ms, render %.1f ms\n", load_ms, build_ms,
-                1000.0 * s.seconds);
-    std::printf("speed      %.2f Mrays/s\n",
-                s.seconds > 0 ? double(s.total_rays()) / s.seconds * 1e-6 : 0.0);
-    if (s.bad_samples() > 0)
-        std::printf("warning    %llu NaN and %llu infinite samples were left out of their pixels\n",
-                    static_cast<unsigned long long>(s.nan_samples),
-                    static_cast<unsigned long long>(s.inf_samples));
-    if (!scale.empty()) std::printf("scale      %s\n", scale.c_str());
-    if (raw)
-        std::printf("values     raw %s (docs/scene-format.md, Outputs)\n", aov_name(params.aov));
-    for (const std::string& w : warnings) std::printf("warning    %s\n", w.c_str());
-    std::printf("image      %s\n", output.c_str());
-    if (o.strict && s.bad_samples() > 0) {
+    if (o.strict && total.bad_samples() > 0) {
         std::fprintf(stderr, "raylane: %s: %llu NaN and %llu infinite samples (--strict)\n",
-                     scene.source.c_str(), static_cast<unsigned long long>(s.nan_samples),
-                     static_cast<unsigned long long>(s.inf_samples));
+                     job.scene.source.c_str(), static_cast<unsigned long long>(total.nan_samples),
+                     static_cast<unsigned long long>(total.inf_samples));
         return 3;
     }
     return 0;
@@ -161,10 +157,11 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_option("scene", o->scene_path, "scene JSON file or model (.obj, .ply)")
         ->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", o->output,
-                    "image to write (.png, .pfm or .exr; default SCENE.png)")
+                    "image to write (.png, .pfm or .exr; default SCENE.png); with --frames, a "
+                    "name with a frame number such as frame_%04d.png")
         ->check(image_output());
     cmd->add_flag("--exr-float", o->exr_float,
-                  "EXR output: 32-bit floats (default: 16-bit halves)");
+                  "EXR output: 32-bit floats (default: 16-bit halves; parts are always floats)");
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
         ->check(CLI::Range(1, 1 << 20));
     add_threads_option(cmd, o->threads);
@@ -179,6 +176,16 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--path", o->path, "renderer: packet (default) or scalar (the reference)")
         ->check(CLI::IsMember({"packet", "scalar"}));
     add_bvh_option(cmd, o->bvh);
+    cmd->add_option("--frames", o->frames,
+                    "frames A..B (or A, or all) of the scene's camera animation; -o then holds a "
+                    "frame number, e.g. out/frame_%04d.png");
+    cmd->add_option("--crop", o->crop,
+                    "render only pixels X0..X1-1, Y0..Y1-1 of the frame (to an .exr: a part for "
+                    "`raylane assemble`)")
+        ->expected(4);
+    cmd->add_option("--tile", o->tile,
+                    "render only part I of N of the frame (0 <= I < N), cut along the tile grid "
+                    "(to an .exr: a part for `raylane assemble`)");
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
     cmd->add_flag("--strict", o->strict,
                   "exit with status 3 when any sample is NaN or infinite (the image is written, "

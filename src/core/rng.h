@@ -26,6 +26,14 @@ inline uint32_t hash_sample(uint32_t pixel, uint32_t sample, uint32_t dim, uint3
     return h;
 }
 
+/// The seed of an animation's frame `frame`: `seed` itself for frame 0 (a still renders as it
+/// always has), else a hash of both, so that frames draw different numbers and frame k is the
+/// same image whoever renders it.
+inline uint32_t frame_seed(uint32_t seed, int frame) {
+    if (frame == 0) return seed;
+    return hash_u32(seed ^ hash_u32(static_cast<uint32_t>(frame) ^ 0x2545f491u));
+}
+
 /// Uniform float in [0, 1): the top 24 bits of the hash times 2^-24.
 inline float random_float(uint32_t pixel, uint32_t sample, uint32_t dim, uint32_t seed) {
     return static_cast<float>(hash_sample(pixel, sample, dim, seed) >> 8) * 0x1.0p-24f;

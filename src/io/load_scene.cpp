@@ -36,6 +36,7 @@ Scene SceneReader::read(const Json& root) {
     }
     if (const Json* v = find(top, "description")) text(Node{v, "$.description"});
     scene.camera = read_camera(child(top, "camera"));
+    scene.camera_path = read_camera_path(child(top, "camera"), scene.camera);
     scene.world_origin = world_origin_;
     if (const Json* v = find(top, "background")) {
         scene.background = color(Node{v, "$.background"});
@@ -105,7 +106,7 @@ glm::dvec3 world_origin_for(glm::dvec3 position, glm::dvec3 look_at) {
 
 Camera SceneReader::read_camera(const Node& n) {
     expect_keys(n, {"position", "look_at", "up", "fov_deg", "fov_axis", "resolution", "spp",
-                    "lens_radius", "focal_distance"});
+                    "lens_radius", "focal_distance", "path", "turntable"});
     Camera c;
     Node look = child(n, "look_at");
     world_origin_ = world_origin_for(dvec3(child(n, "position")), dvec3(look));
@@ -147,6 +148,78 @@ Camera SceneReader::read_camera(const Node& n) {
         fail(find(n, "up") ? child(n, "up") : look, "the view direction is parallel to up");
     }
     return c;
+}
+
+CameraPath SceneReader::read_camera_path(const Node& camera, const Camera& still) const {
+    CameraPath path;
+    path.focus_at_look_at = find(camera, "focal_distance") == nullptr;
+    const Json* keys_json = find(camera, "path");
+    const Json* turn_json = find(camera, "turntable");
+    if (keys_json && turn_json) {
+        fail(Node{turn_json, member_path(camera.path, "turntable")},
+             "a camera moves along a path or turns, not both");
+    }
+    if (turn_json) {
+        Node t{turn_json, member_path(camera.path, "turntable")};
+        expect(t, turn_json->is_object(), "an object");
+        expect_keys(t, {"frames", "degrees"});
+        path.turntable_frames = integer(child(t, "frames"), 1, 1 << 20);
+        if (const Json* v = find(t, "degrees")) {
+            path.turntable_degrees = real(Node{v, member_path(t.path, "degrees")});
+        }
+        return path;
+    }
+    if (!keys_json) return path;
+    Node p{keys_json, member_path(camera.path, "path")};
+    expect(p, keys_json->is_object(), "an object");
+    expect_keys(p, {"keys", "fps", "interpolation"});
+    if (const Json* v = find(p, "fps")) {
+        path.fps = real(Node{v, member_path(p.path, "fps")}, Sign::positive);
+    }
+    if (const Json* v = find(p, "interpolation")) {
+        path.interpolation =
+            choice(Node{v, member_path(p.path, "interpolation")}, {"catmull-rom", "linear"}) == 0
+                ? Interpolation::catmull_rom
+                : Interpolation::linear;
+    }
+    Node keys = child(p, "keys");
+    expect(keys, keys.j->is_array() && keys.j->size() >= 2, "an array of two or more keys");
+    for (size_t i = 0; i < keys.j->size(); ++i) {
+        Node k{&(*keys.j)[i], element_path(keys.path, i)};
+        path.keys.push_back(read_camera_key(k, still));
+        if (i > 0 && !(path.keys[i].time > path.keys[i - 1].time)) {
+            fail(child(k, "time"), "must be later than the key before it");
+        }
+    }
+    const double frames =
+        (double(path.keys.back().time) - double(path.keys.front().time)) * double(path.fps);
+    if (!(frames < double(1 << 20))) fail(p, "more than 2^20 frames");
+    return path;
+}
+
+CameraKey SceneReader::read_camera_key(const Node& n, const Camera& still) const {
+    expect(n, n.j->is_object(), "an object");
+    expect_keys(n, {"time", "position", "look_at", "up", "fov_deg"});
+    CameraKey k;
+    k.time = real(child(n, "time"));
+    k.position = point(child(n, "position"));
+    Node look = child(n, "look_at");
+    k.look_at = point(look);
+    k.up = still.up;
+    if (const Json* v = find(n, "up")) k.up = direction(Node{v, member_path(n.path, "up")});
+    k.fov_deg = still.fov_deg;
+    if (const Json* v = find(n, "fov_deg")) {
+        Node fov{v, member_path(n.path, "fov_deg")};
+        k.fov_deg = real(fov);
+        if (!(k.fov_deg > 0.0f && k.fov_deg < 180.0f)) {
+            fail(fov, "must be between 0 and 180 (exclusive), got " + format_number(k.fov_deg));
+        }
+    }
+    const glm::dvec3 view = glm::dvec3(k.look_at) - glm::dvec3(k.position);
+    if (!(glm::length(view) > 0.0)) fail(look, "must differ from the key's position");
+    const glm::dvec3 side = glm::cross(glm::normalize(view), glm::normalize(glm::dvec3(k.up)));
+    if (!(glm::length(side) > 1e-6)) fail(look, "the view direction is parallel to up");
+    return k;
 }
 
 ShadingOptions SceneReader::read_shading(const Node& n) const {

@@ -49,6 +49,8 @@ class SceneReader : JsonReader {
 
     // top level (load_scene.cpp)
     Camera read_camera(const Node& n);
+    CameraPath read_camera_path(const Node& camera, const Camera& still) const;
+    CameraKey read_camera_key(const Node& n, const Camera& still) const;
     ShadingOptions read_shading(const Node& n) const;
 
     // materials and textures (load_scene_materials.cpp)

@@ -600,7 +600,8 @@ void wavefront_values(const Scene& scene, const Accel& accel, const RenderParams
 /// index in it), then into the film a row at a time: a few wide stores per row instead of three
 /// per pixel.
 template <int W>
-void write_tile(const Tile& tile, const TilePackets<W>& tp, const TileSums<W>& sums, Film& film) {
+void write_tile(const Tile& tile, const TilePackets<W>& tp, const TileSums<W>& sums,
+                const PixelRect& region, Film& film) {
     static_assert(sizeof(vec3) == 3 * sizeof(float));  // runs of floats copied as pixels
     alignas(64) vec3 tile_rgb[max_block_rays];
     for (int p = 0; p < tp.count; ++p) {
@@ -620,13 +621,15 @@ void write_tile(const Tile& tile, const TilePackets<W>& tp, const TileSums<W>& s
             });
         }
     }
-    for (int y = tile.y0; y < tile.y1; ++y) {
-        vec3* row = &film.pixels[static_cast<size_t>(y) * film.width + tile.x0];
-        const vec3* from = &tile_rgb[(y - tile.y0) * tp.tile_w];
-        if (tp.tile_w == 16)  // the common case: a copy of constant size, inlined
+    // the film holds the region: the tile's rows and columns inside it
+    const int x0 = std::max(tile.x0, region.x0), x1 = std::min(tile.x1, region.x1);
+    for (int y = std::max(tile.y0, region.y0); y < std::min(tile.y1, region.y1); ++y) {
+        vec3* row = &film.at(x0 - region.x0, y - region.y0);
+        const vec3* from = &tile_rgb[(y - tile.y0) * tp.tile_w + (x0 - tile.x0)];
+        if (x1 - x0 == 16)  // the common case: a copy of constant size, inlined
             std::memcpy(row, from, 16 * sizeof(vec3));
         else
-            std::memcpy(row, from, static_cast<size_t>(tp.tile_w) * sizeof(vec3));
+            std::memcpy(row, from, static_cast<size_t>(x1 - x0) * sizeof(vec3));
     }
 }
 
@@ -637,11 +640,12 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     const Camera& cam = scene.camera;
     const CameraFrame frame = make_camera_frame(cam);
     RenderResult result;
-    result.film = make_film_for_overwrite(cam.width, cam.height);
+    const PixelRect region = render_region(params, cam.width, cam.height);
+    result.film = make_film_for_overwrite(region.width(), region.height());
     const int spp = params.spp > 0 ? params.spp : 1;
     // a tile is a block: at most max_block_rays pixels, rows a multiple of W wide
     const int tile_size = std::min(params.tile_size, 16);
-    const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, tile_size);
+    const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, tile_size, region);
     PerThreadStats per_thread;
     Progress progress{params.progress_label, tiles.size(), params.progress && stderr_is_terminal()};
     const PacketLanes<W> lanes = make_packet_lanes<W>(cam.width);
@@ -667,11 +671,12 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
                 add_values<W>(tp, value, sums);
             }
         }
-        write_tile<W>(tile, tp, sums, result.film);
+        write_tile<W>(tile, tp, sums, region, result.film);
         per_thread.local().add_tile(counts, sums.nans, sums.infs);
     });
 
-    result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
+    result.stats.primary_rays = static_cast<uint64_t>(region.width()) *
+                                static_cast<uint64_t>(region.height()) * static_cast<uint64_t>(spp);
     for (const RenderStats& sums : per_thread) result.stats.add_counts(sums);
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

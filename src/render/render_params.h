@@ -16,6 +16,16 @@ enum class Aov : uint8_t { color, normal, depth, bvh_cost };
 bool parse_aov(const std::string& name, Aov& aov);
 const char* aov_name(Aov aov);
 
+/// Pixels [x0, x1) x [y0, y1) of a frame, row 0 at the top: a tile of the renderer's grid, or the
+/// part of a frame a render covers.
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    bool operator==(const PixelRect&) const = default;
+};
+
 struct RenderParams {
     int spp = 1;      ///< samples per pixel: 1 = pixel centre, more = jittered in the pixel
     int threads = 0;  ///< 0 = all hardware threads
@@ -27,6 +37,10 @@ struct RenderParams {
     bool generic_kernel = false;  ///< packet path: the all-features kernel whatever the scene uses
     bool progress = false;        ///< progress on stderr (on a terminal)
     const char* progress_label = "render";  ///< what the progress line calls the render
+    /// The part of the frame to render; empty (the default) is the whole frame. The film is the
+    /// region's size. Every tile of the frame's grid that meets the region is rendered whole, so
+    /// a pixel has the same value whatever region it is rendered in.
+    PixelRect region;
 };
 
 struct RenderStats {

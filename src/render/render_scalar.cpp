@@ -1,6 +1,7 @@
 // render: the scalar reference renderer. Mirrored by render_packet.cpp.
 #include "render/render_scalar.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -46,17 +47,19 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
     const Camera& cam = scene.camera;
     const CameraFrame frame = make_camera_frame(cam);
     RenderResult result;
-    result.film = make_film_for_overwrite(cam.width, cam.height);
+    const PixelRect region = render_region(params, cam.width, cam.height);
+    result.film = make_film_for_overwrite(region.width(), region.height());
     const int spp = params.spp > 0 ? params.spp : 1;
-    const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size);
+    const std::vector<Tile> tiles = make_tiles(cam.width, cam.height, params.tile_size, region);
     PerThreadStats per_thread;
     Progress progress{params.progress_label, tiles.size(), params.progress && stderr_is_terminal()};
 
     for_each_tile(tiles, params.threads, progress, [&](const Tile& tile) {
         ShadeCounts counts;
         uint64_t nans = 0, infs = 0;
-        for (int y = tile.y0; y < tile.y1; ++y) {
-            for (int x = tile.x0; x < tile.x1; ++x) {
+        // a pixel's samples depend on the pixel alone: the tile's pixels inside the region
+        for (int y = std::max(tile.y0, region.y0); y < std::min(tile.y1, region.y1); ++y) {
+            for (int x = std::max(tile.x0, region.x0); x < std::min(tile.x1, region.x1); ++x) {
                 const uint32_t pixel = static_cast<uint32_t>(y * cam.width + x);
                 PixelSum sum;
                 for (int s = 0; s < spp; ++s) {
@@ -89,13 +92,14 @@ RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderP
                             break;
                     }
                 }
-                result.film.at(x, y) = pixel_mean(sum);
+                result.film.at(x - region.x0, y - region.y0) = pixel_mean(sum);
             }
         }
         per_thread.local().add_tile(counts, nans, infs);
     });
 
-    result.stats.primary_rays = static_cast<uint64_t>(cam.width) * cam.height * spp;
+    result.stats.primary_rays = static_cast<uint64_t>(region.width()) *
+                                static_cast<uint64_t>(region.height()) * static_cast<uint64_t>(spp);
     for (const RenderStats& sums : per_thread) result.stats.add_counts(sums);
     result.stats.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -16,11 +16,21 @@
 
 namespace raylane {
 
-struct Tile {
-    int x0, y0, x1, y1;  ///< pixels [x0, x1) x [y0, y1)
-};
+using Tile = PixelRect;
 
-std::vector<Tile> make_tiles(int width, int height, int tile_size);
+/// The tiles of a width x height frame's grid of tile_size squares (the last row and column
+/// narrower) that meet `region`; every tile when the region is empty.
+std::vector<Tile> make_tiles(int width, int height, int tile_size, const PixelRect& region = {});
+
+/// Part `index` (0 to count - 1) of `count` rectangles that cut a width x height frame along the
+/// lines of its tile grid (make_tiles): the tile rows in min(count, rows) bands of about equal
+/// height, each band's columns in as many parts as fall to it. Row-major: part 0 at the top left.
+/// Throws std::invalid_argument when some part would hold no tile.
+PixelRect tile_part(int width, int height, int tile_size, int index, int count);
+
+/// The region a render covers: params.region, or the whole frame when it is empty. Throws
+/// std::invalid_argument when the region is not inside the frame.
+PixelRect render_region(const RenderParams& params, int width, int height);
 
 /// Sets flush-to-zero and denormals-are-zero for the calling thread (numerics.md §0.2).
 void enable_flush_to_zero();

@@ -32,6 +32,30 @@ struct Camera {
     float focal_distance = 1.0f;
 };
 
+/// One keyframe of a camera path: where the camera is at `time` (seconds).
+struct CameraKey {
+    float time = 0.0f;
+    vec3 position{0.0f}, look_at{0.0f, 0.0f, 1.0f}, up{0.0f, 1.0f, 0.0f};
+    float fov_deg = 60.0f;
+};
+
+enum class Interpolation : uint8_t { linear, catmull_rom };
+
+/// How the camera moves: `keys` (two or more, times increasing) sampled at `fps`, frame k at
+/// keys[0].time + k / fps; or, when turntable_frames > 0, an orbit of the scene's camera about
+/// the axis through its look-at point along its up direction, turntable_degrees in
+/// turntable_frames frames (frame k at k / turntable_frames of the turn). No keys and no
+/// turntable: a still.
+struct CameraPath {
+    std::vector<CameraKey> keys;
+    Interpolation interpolation = Interpolation::catmull_rom;
+    float fps = 24.0f;
+    int turntable_frames = 0;
+    float turntable_degrees = 360.0f;
+    /// The focal distance follows each frame's look-at point (the scene gave none).
+    bool focus_at_look_at = true;
+};
+
 /// The specular lobe of a material (brdf-reference.md; the formulas are in shade/brdf_*.h).
 enum class SpecularModel : uint8_t { phong, glossy_phong, blinn_phong, ward, ward_duer };
 
@@ -217,6 +241,7 @@ struct Scene {
     /// (load_scene picks it at the camera's position, rounded; numerics.md section 17).
     glm::dvec3 world_origin{0.0};
     Camera camera;
+    CameraPath camera_path;  ///< the camera's animation (scene/camera_path.h); none for a still
     vec3 background{0.0f};
     int32_t environment = -1;  ///< Scene::textures index (latitude-longitude); -1 = background
     ShadingOptions shading;

@@ -25,8 +25,8 @@ inline std::string slurp(const std::filesystem::path& path) {
     return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
-/// Runs the raylane binary with `args` (a shell fragment), capturing stdout and stderr.
-inline CliRun run(const std::string& args) {
+/// Runs a shell command, capturing stdout and stderr.
+inline CliRun run_command(const std::string& command) {
     // per test and process: ctest runs the tests of a program in parallel
     const std::filesystem::path dir = std::filesystem::temp_directory_path();
     const std::string tag =
@@ -34,8 +34,7 @@ inline CliRun run(const std::string& args) {
         std::to_string(getpid());
     const std::filesystem::path out = dir / ("raylane_cli_out_" + tag + ".txt");
     const std::filesystem::path err = dir / ("raylane_cli_err_" + tag + ".txt");
-    const std::string cmd =
-        std::string(RAYLANE_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+    const std::string cmd = command + " >" + out.string() + " 2>" + err.string();
     const int status = std::system(cmd.c_str());
     CliRun r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -45,6 +44,9 @@ inline CliRun run(const std::string& args) {
     std::filesystem::remove(err);
     return r;
 }
+
+/// Runs the raylane binary with `args` (a shell fragment), capturing stdout and stderr.
+inline CliRun run(const std::string& args) { return run_command(RAYLANE_BINARY " " + args); }
 
 /// The number of lines of s (its newlines).
 inline size_t lines(const std::string& s) {
