@@ -2,11 +2,7 @@
 // [--frames A..B] [--crop X0 Y0 X1 Y1 | --tile I/N]`: the options and the plain render, frame
 // after frame; under mpirun, app/render_mpi.cpp. The files are written by write_output.h and
 // part.h, which `assemble` shares.
-#include <tbb/info.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -18,8 +14,6 @@
 #include "io/model_scene.h"
 #include "render/warnings.h"
 #include "scene/camera_path.h"
-#include "scene/features.h"
-#include "simd/simd.h"
 
 namespace raylane {
 namespace {
@@ -83,6 +77,7 @@ RenderJob make_job(const RenderOptions& o, Scene scene, const std::vector<Aov>& 
     job.params.progress = !o.quiet;
     job.scalar = o.path == "scalar";
     job.exr_float = o.exr_float;
+    job.strict = o.strict;
     job.bvh = o.bvh;
     job.info = make_part_info(job.scene, job.params, o.path, o.bvh);
     if (aovs.size() > 1) set_part_setting(job.info, "aov", "all");
@@ -140,13 +135,7 @@ int run_render(const RenderOptions& o) {
                     job.last_frame - job.first_frame + 1, elapsed_ms(t_frames) / 1000.0,
                     job.load_ms, job.build_ms);
     }
-    if (o.strict && total.bad_samples() > 0) {
-        std::fprintf(stderr, "raylane: %s: %llu NaN and %llu infinite samples (--strict)\n",
-                     job.scene.source.c_str(), static_cast<unsigned long long>(total.nan_samples),
-                     static_cast<unsigned long long>(total.inf_samples));
-        return 3;
-    }
-    return 0;
+    return strict_exit_code(job, total);
 }
 
 }  // namespace

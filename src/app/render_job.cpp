@@ -104,6 +104,14 @@ std::string frame_output(const std::string& pattern, int frame) {
     return out;
 }
 
+int strict_exit_code(const RenderJob& job, const RenderStats& total) {
+    if (!job.strict || total.bad_samples() == 0) return 0;
+    std::fprintf(stderr, "raylane: %s: %llu NaN and %llu infinite samples (--strict)\n",
+                 job.scene.source.c_str(), static_cast<unsigned long long>(total.nan_samples),
+                 static_cast<unsigned long long>(total.inf_samples));
+    return 3;
+}
+
 void parse_frames(const std::string& text, int frame_count, int& first, int& last) {
     auto number = [&](const std::string& s) {
         if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos)

@@ -21,6 +21,7 @@ struct RenderJob {
     std::vector<Aov> aovs;  ///< what each frame renders: one AOV, or all four (--aov all)
     bool scalar = false;
     bool exr_float = false;  ///< EXR channels as 32-bit floats (parts always are)
+    bool strict = false;     ///< --strict: exit with 3 when a sample was NaN or infinite
     PartInfo info;           ///< the scene's hash and the settings, for EXR headers
     std::string output;      ///< a file, or a pattern with a frame number (frame_output)
     int first_frame = 0, last_frame = 0;
@@ -53,6 +54,10 @@ bool has_frame_number(const std::string& pattern);
 /// several). The films are taken by value: pass an rvalue to map them in place.
 void write_frame(const RenderJob& job, int frame, std::vector<AovFilm> films,
                  const RenderStats& stats);
+
+/// The exit code of a job whose frames counted `total`: 3, with a line on stderr, under --strict
+/// when a sample was NaN or infinite, else 0.
+int strict_exit_code(const RenderJob& job, const RenderStats& total);
 
 /// The frames A..B of --frames ("A..B", "A", or "all" of the scene's animation), checked against
 /// the animation's frames.

@@ -133,6 +133,7 @@ struct Gather {
     std::map<int, RenderStats> stats;
     double start = now_seconds();
     double writing = 0.0;  ///< seconds spent writing frames
+    RenderStats total;     ///< every frame's counts
 
     /// Puts a unit's floats (unit_floats) in its frame; writes the frame when it is whole.
     void add(int frame, const PixelRect& rect, const float* data, const RenderStats& s) {
@@ -154,6 +155,7 @@ struct Gather {
         }
         RenderStats& fs = stats[frame];
         fs.add_counts(s);
+        total.add_counts(s);
         if (--missing[frame] > 0) return;
         // the frame is whole: its time is the wall time since the job (or the last frame) began
         fs.seconds = now_seconds() - start;
@@ -192,6 +194,7 @@ struct MpiCosts {
                            ///< writing frames)
     double waiting = 0.0;  ///< rank 0 after its last unit; a worker in its sends and receives
     int64_t units = 0;     ///< units rendered by this rank
+    RenderStats total;     ///< rank 0: every frame's counts
 };
 
 /// Asks a worker keeps open: the answer to one is on its way while it renders another.
@@ -201,10 +204,11 @@ constexpr int asks_ahead = 2;
 /// message may need its sender, busy rendering, to move it), takes rank 0's own results from
 /// `take_own(add)` (which returns true once rank 0 renders no more), gathers and writes the
 /// frames. Returns the seconds spent handling messages and pixels (not writing frames, not
-/// pausing).
+/// pausing); `total` gets every frame's counts.
 template <class TakeOwn>
 double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int ranks,
-                     bool show_progress, std::atomic<size_t>& next, TakeOwn&& take_own) {
+                     bool show_progress, std::atomic<size_t>& next, RenderStats& total,
+                     TakeOwn&& take_own) {
     Gather gather(
         job, job.region.empty() ? PixelRect{0, 0, job.still.width, job.still.height} : job.region,
         static_cast<int>(units.size()) / (job.last_frame - job.first_frame + 1));
@@ -273,6 +277,7 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
         }
     }
     progress.finish();
+    total = gather.total;
     return busy;
 }
 
@@ -294,17 +299,18 @@ MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bo
     std::exception_ptr service_error;
     std::thread service([&] {
         try {
-            costs.serving = serve_workers(job, units, ranks, show_progress, next, [&](auto&& add) {
-                std::vector<Own> mine;
-                bool done = false;
-                {
-                    std::lock_guard<std::mutex> lock(own_mutex);
-                    mine.swap(own);
-                    done = own_done;
-                }
-                for (Own& o : mine) add(o.unit, o.result);
-                return done;
-            });
+            costs.serving =
+                serve_workers(job, units, ranks, show_progress, next, costs.total, [&](auto&& add) {
+                    std::vector<Own> mine;
+                    bool done = false;
+                    {
+                        std::lock_guard<std::mutex> lock(own_mutex);
+                        mine.swap(own);
+                        done = own_done;
+                    }
+                    for (Own& o : mine) add(o.unit, o.result);
+                    return done;
+                });
         } catch (...) {
             service_error = std::current_exception();
         }
@@ -435,7 +441,7 @@ int render_over_mpi(const std::function<RenderJob()>& make_job) {
             100.0 * workers_waited / (seconds * double(ranks - 1)));
     }
     MPI_Finalize();
-    return 0;
+    return rank == 0 ? strict_exit_code(job, mine.total) : 0;
 }
 
 }  // namespace raylane
