@@ -2,16 +2,18 @@
 """The Python module's ray queries against the C++ packet path and Embree, on the same rays.
 
 Three ray sets of 1M rays at a mesh (the 100k dragon by default): primary-like rays from a
-pinhole camera in 16x16 tiles of 4x4 squares (coherent), random rays from a sphere around the mesh towards
-points inside its bounds (incoherent), and shadow-like occlusion queries from the primary hits
-towards a directional light. Each set is saved as a ray file and raced by
+pinhole camera in 16x16 tiles of 4x4 squares (coherent), random rays from a sphere around the
+mesh towards points inside its bounds (incoherent), and shadow-like occlusion queries from the
+primary hits towards a directional light. Each set is saved as a ray file and raced by
 `bench_intersect --rays FILE` (Raylane's packet path through the same batch function, and
 Embree 3's APIs); the Python calls (Mesh.intersect, Mesh.occluded) are timed here, a median of
-5 after a warm-up, on all threads. Then the mesh's BVH build from NumPy arrays (raylane.Mesh)
-against the C++ build from the loaded mesh (BM_RayFile_Build).
+5 after a warm-up, on all threads, in rounds that alternate with bench_intersect's (3 by
+default). Then the mesh's BVH build from NumPy arrays (raylane.Mesh) against the C++ build from
+the loaded mesh (BM_RayFile_Build).
 
     PYTHONPATH=build/release/python /usr/bin/python3 bench/python/ray_queries.py \\
-        [--bench build/release/bench/bench_intersect] [--mesh dragon.ply] [--rays 1000000]
+        [--bench build/release/bench/bench_intersect] [--mesh dragon.ply] [--rays 1000000] \\
+        [--rounds 3]
 
 Prints a Markdown table of Mrays/s (and ms for the build).
 """
@@ -100,7 +102,7 @@ def bench_intersect(bench, rays_file, mesh, threads, query):
         [bench, "--rays", rays_file, "--mesh", mesh, "--benchmark_repetitions=5",
          "--benchmark_report_aggregates_only=true", "--benchmark_format=json",
          f"--benchmark_filter=BM_RayFile_({query}_(Packet|Block|Stream|Embree.*)"
-         f"/threads:{threads}$|Build)"],
+         f"/threads:{threads}/|Build)"],
         check=True, capture_output=True, text=True).stdout
     rates, build_ms = {}, None
     for b in json.loads(out)["benchmarks"]:
@@ -120,6 +122,8 @@ def main():
                                                     "bench_intersect"))
     ap.add_argument("--mesh", default="dragon.ply")
     ap.add_argument("--rays", type=int, default=1_000_000)
+    ap.add_argument("--rounds", type=int, default=3,
+                    help="rounds of Python and C++ measurements, in turn (default 3)")
     args = ap.parse_args()
     os.environ.setdefault("RAYLANE_MODEL_PATH", os.path.join(SOURCE_DIR, "..", "shared", "models"))
     threads = os.cpu_count()
@@ -132,30 +136,43 @@ def main():
             ("random (incoherent)", "Closest", random_rays(mesh, args.rays)),
             ("shadow (occluded)", "Occluded", shadow_rays(mesh, args.rays))]
     print(f"{args.mesh}: {mesh.triangle_count} triangles; {threads} threads; Mrays/s, medians "
-          f"of 5; Raylane {raylane.__version__}, packet width {raylane.packet_width}\n")
+          f"over {args.rounds} rounds of medians of 5; Raylane {raylane.__version__}, packet "
+          f"width {raylane.packet_width}; load average {os.getloadavg()[0]:.1f} at the start\n")
     print("| rays | count | Python | C++ packet (best of Packet, Block, Stream) | Embree's best "
           "| Python / C++ | Python / Embree |")
     print("|---|---:|---:|---:|---:|---:|---:|")
-    build_cpp = None
+    build_cpp = []
     details = []
     with tempfile.TemporaryDirectory() as folder:
         for label, query, (o, d) in sets:
             n = len(o)
-            if query == "Closest":
-                seconds = median_seconds(lambda: mesh.intersect(o, d))
-            else:
-                seconds = median_seconds(lambda: mesh.occluded(o, d))
-            python_rate = n / seconds * 1e-6
             rays_file = os.path.join(folder, "rays.npy")
             raylane.save_rays(rays_file, o, d)
-            rates, build_ms = bench_intersect(args.bench, rays_file, args.mesh, threads, query)
-            build_cpp = build_ms if build_ms is not None else build_cpp
-            cpp = max(rates.get(k, 0.0) for k in ("Packet", "Block", "Stream"))
-            embree = max((v for k, v in rates.items() if k.startswith("Embree")), default=0.0)
+            # rounds of the Python call and bench_intersect in turn, so that a busy spell of a
+            # shared machine falls on both; the medians over the rounds are reported
+            python_rates, cpp_rates, embree_rates, all_rates = [], [], [], []
+            for _ in range(args.rounds):
+                if query == "Closest":
+                    seconds = median_seconds(lambda: mesh.intersect(o, d))
+                else:
+                    seconds = median_seconds(lambda: mesh.occluded(o, d))
+                python_rates.append(n / seconds * 1e-6)
+                rates, build_ms = bench_intersect(args.bench, rays_file, args.mesh, threads, query)
+                if build_ms is not None:
+                    build_cpp.append(build_ms)
+                cpp_rates.append(max(rates.get(k, 0.0) for k in ("Packet", "Block", "Stream")))
+                embree_rates.append(max((v for k, v in rates.items() if k.startswith("Embree")),
+                                        default=0.0))
+                all_rates.append(rates)
+            python_rate = statistics.median(python_rates)
+            cpp = statistics.median(cpp_rates)
+            embree = statistics.median(embree_rates)
             print(f"| {label} | {n} | {python_rate:.2f} | {cpp:.2f} | {embree:.2f} | "
                   f"{python_rate / cpp:.2f}x | "
-                  + (f"{python_rate / embree:.2f}x |" if embree else "— |"))
-            details.append((label, rates))
+                  + (f"{python_rate / embree:.2f}x |" if embree else "— |"), flush=True)
+            details.append((label, {k: statistics.median(r[k] for r in all_rates)
+                                    for k in all_rates[0]}))
+    build_cpp = statistics.median(build_cpp)
     print(f"\nBVH build: raylane.Mesh from NumPy {build_py:.1f} ms, C++ (BM_RayFile_Build) "
           f"{build_cpp:.1f} ms: {build_py / build_cpp:.2f}x")
     print("\nEvery contender (Mrays/s):\n")

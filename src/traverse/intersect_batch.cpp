@@ -43,11 +43,16 @@ bool read_ray(const RayArrays& rays, size_t i, Ray& ray) {
     return finite && ray.dir != vec3(0.0f) && ray.t_max > 0.0f;
 }
 
-/// The geometric normal surface_at gives, straight from the triangle's corners for a mesh.
-vec3 geometric_normal(const Scene& scene, const Ray& ray, const Hit& hit) {
+/// The geometric normal surface_at gives for ray i's hit, straight from the triangle's corners
+/// for a mesh.
+vec3 geometric_normal(const Scene& scene, const RayArrays& rays, size_t i, const Hit& hit) {
     if (!hit.hit()) return vec3(0.0f);
     const Object& object = scene.objects[hit.object];
-    if (object.kind != ShapeKind::mesh) return surface_at(scene, ray, hit).geometric_normal;
+    if (object.kind != ShapeKind::mesh) {
+        Ray ray;
+        read_ray(rays, i, ray);
+        return surface_at(scene, ray, hit).geometric_normal;
+    }
     const Mesh& mesh = scene.meshes[object.shape];
     const glm::uvec3 tri = mesh.tris[hit.prim];
     return geometry_triangle<float>(mesh.positions[tri.x], mesh.positions[tri.y],
@@ -55,7 +60,7 @@ vec3 geometric_normal(const Scene& scene, const Ray& ray, const Hit& hit) {
         .normal;
 }
 
-void write_hit(const Scene& scene, const Ray& ray, const Hit& hit, size_t i,
+void write_hit(const Scene& scene, const RayArrays& rays, const Hit& hit, size_t i,
                const HitBuffers& out) {
     if (out.t) out.t[i] = hit.t;
     if (out.prim) out.prim[i] = static_cast<int32_t>(hit.prim);
@@ -63,7 +68,7 @@ void write_hit(const Scene& scene, const Ray& ray, const Hit& hit, size_t i,
     if (out.u) out.u[i] = hit.uv.x;
     if (out.v) out.v[i] = hit.uv.y;
     if (out.normal) {
-        const vec3 n = geometric_normal(scene, ray, hit);
+        const vec3 n = geometric_normal(scene, rays, i, hit);
         out.normal[3 * i] = n.x, out.normal[3 * i + 1] = n.y, out.normal[3 * i + 2] = n.z;
     }
 }
@@ -82,22 +87,45 @@ void run_tasks(size_t count, int threads, Body&& body) {
     });
 }
 
+/// The automatic choice's test: every direction within about 25 degrees of the first one's
+/// (cosine >= 0.9, compared squared: no square root or division per ray).
+struct ConeTest {
+    vec3 first{0.0f};
+    float first_len2 = 0.0f;
+    bool inside = true;
+    void add(vec3 d) {
+        const float len2 = glm::dot(d, d);
+        if (first_len2 == 0.0f) {
+            first = d, first_len2 = len2;
+            return;
+        }
+        const float c = glm::dot(d, first);
+        inside = inside && c > 0.0f && c * c >= 0.81f * len2 * first_len2;
+    }
+};
+
 /// Packets of rays first .. first + n - 1 (n <= max_block_rays): ceil(n / W) packets, lanes of
-/// rays that are not traced inactive with a benign ray. Returns the packet count.
+/// rays that are not traced inactive with a benign ray; lanes[p] holds packet p's active lanes.
+/// Returns the packet count; `coherent` tells whether the rays pass the ConeTest.
 template <int W>
 int load_block(const RayArrays& rays, size_t first, size_t n, RayPacket<W>* packets,
-               vmask<W>* active, uint32_t* lanes) {
+               vmask<W>* active, uint32_t* lanes, bool& coherent) {
     alignas(64) float c[7][max_block_rays];
     const int count = static_cast<int>((n + W - 1) / W);
     for (int p = 0; p < count; ++p) lanes[p] = 0;
+    ConeTest cone;
     for (size_t k = 0; k < size_t(count) * W; ++k) {
         Ray ray;
         const bool traced = k < n && read_ray(rays, first + k, ray);
-        if (!traced) ray = Ray{vec3(0.0f), vec3(0.0f, 0.0f, 1.0f), 0.0f, -1.0f};
-        const float f[7] = {ray.org.x, ray.org.y, ray.org.z, ray.dir.x,
-                            ray.dir.y, ray.dir.z, ray.t_max};
-        for (int j = 0; j < 7; ++j) c[j][k] = f[j];
-        if (traced) lanes[k / W] |= 1u << (k % W);
+        if (traced) {
+            lanes[k / W] |= 1u << (k % W);
+            cone.add(ray.dir);
+        } else {
+            ray = Ray{vec3(0.0f), vec3(0.0f, 0.0f, 1.0f), 0.0f, -1.0f};
+        }
+        c[0][k] = ray.org.x, c[1][k] = ray.org.y, c[2][k] = ray.org.z;
+        c[3][k] = ray.dir.x, c[4][k] = ray.dir.y, c[5][k] = ray.dir.z;
+        c[6][k] = ray.t_max;
     }
     for (int p = 0; p < count; ++p) {
         const size_t o = size_t(p) * W;
@@ -107,6 +135,7 @@ int load_block(const RayArrays& rays, size_t first, size_t n, RayPacket<W>* pack
         packets[p].t_max = load<W>(&c[6][o]);
         active[p] = mask_from_bits<W>(lanes[p]);
     }
+    coherent = cone.inside;
     return count;
 }
 
@@ -114,14 +143,21 @@ int load_block(const RayArrays& rays, size_t first, size_t n, RayPacket<W>* pack
 template <int W>
 void store_block(const Scene& scene, const RayArrays& rays, const HitPacket<W>* hits,
                  const uint32_t* lanes, size_t first, size_t n, const HitBuffers& out) {
+    alignas(64) float t[max_block_rays], u[max_block_rays], v[max_block_rays];
+    alignas(64) int32_t prim[max_block_rays], object[max_block_rays];
+    const size_t count = (n + W - 1) / W;
+    for (size_t p = 0; p < count; ++p) {
+        store(&t[p * W], hits[p].t), store(&u[p * W], hits[p].u), store(&v[p * W], hits[p].v);
+        store(&prim[p * W], hits[p].prim), store(&object[p * W], hits[p].object);
+    }
     for (size_t k = 0; k < n; ++k) {
-        const size_t p = k / W;
-        const int lane = static_cast<int>(k % W);
-        Ray ray;
-        read_ray(rays, first + k, ray);
         Hit hit;
-        if ((lanes[p] >> lane) & 1u) hit = get_hit(hits[p], lane);
-        write_hit(scene, ray, hit, first + k, out);
+        if ((lanes[k / W] >> (k % W)) & 1u) {
+            hit.t = t[k], hit.uv = vec2(u[k], v[k]);
+            hit.prim = static_cast<uint32_t>(prim[k]),
+            hit.object = static_cast<uint32_t>(object[k]);
+        }
+        write_hit(scene, rays, hit, first + k, out);
     }
 }
 
@@ -135,7 +171,9 @@ void store_occluded(const vmask<W>* occluded, const uint32_t* lanes, size_t firs
     }
 }
 
-/// A task's stream: the packets of its incoherent blocks, and where each block's rays are.
+/// A task's packets: each block is loaded at the end of the task's stream; a block traced on
+/// its own (coherent) gives its place back, the others stay and are traced together as one
+/// stream when the task's blocks are all loaded.
 template <int W>
 struct StreamPackets {
     struct Block {
@@ -146,20 +184,14 @@ struct StreamPackets {
     std::vector<HitPacket<W>> hits;
     std::unique_ptr<vmask<W>[]> active, occluded;  // (vector<bool> at W = 1)
     std::vector<uint32_t> lanes;
-    std::vector<Block> blocks;
-    int count = 0;
-    size_t capacity = 0;
+    std::vector<Block> blocks;  ///< the blocks in the stream
+    int count = 0;              ///< packets in the stream
 
     StreamPackets() {
         constexpr size_t packets = (batch_task_rays + W - 1) / W;
         rays.resize(packets), hits.resize(packets), lanes.resize(packets);
         active.reset(new vmask<W>[packets]);
         occluded.reset(new vmask<W>[packets]);
-    }
-    void add(const RayArrays& r, size_t first, size_t n) {
-        blocks.push_back({first, n, count});
-        count += load_block<W>(r, first, n, &rays[size_t(count)], &active[size_t(count)],
-                               &lanes[size_t(count)]);
     }
     void clear() { count = 0, blocks.clear(); }
 };
@@ -170,82 +202,78 @@ StreamPackets<W>& stream_packets() {
     return s;
 }
 
-bool as_block(const RayArrays& rays, size_t first, size_t n, Coherence coherence) {
-    return coherence == Coherence::coherent ||
-           (coherence == Coherence::automatic && rays_coherent(rays, first, n));
+/// Loads rays first .. last - 1 block by block into the task's stream; traced_alone(at, count,
+/// first, n) traces a block that goes on its own (coherent) and writes its answers; then
+/// traced_together() traces the rest as one stream.
+template <int W, class Alone, class Together>
+void packet_task(const RayArrays& rays, Coherence coherence, size_t first, size_t last,
+                 StreamPackets<W>& s, Alone&& traced_alone, Together&& traced_together) {
+    s.clear();
+    for (size_t b = first; b < last; b += max_block_rays) {
+        const size_t n = std::min<size_t>(max_block_rays, last - b);
+        const int at = s.count;
+        bool coherent = false;
+        const int count = load_block<W>(rays, b, n, &s.rays[size_t(at)], &s.active[size_t(at)],
+                                        &s.lanes[size_t(at)], coherent);
+        if (coherence == Coherence::coherent || (coherence == Coherence::automatic && coherent)) {
+            traced_alone(at, count, b, n);
+        } else {
+            s.blocks.push_back({b, n, at});
+            s.count += count;
+        }
+    }
+    if (s.count > 0) traced_together();
 }
 
 template <int W>
 void closest_packet_task(const Scene& scene, const Accel& accel, const RayArrays& rays,
                          const HitBuffers& out, Coherence coherence, size_t first, size_t last) {
-    constexpr int per_block = max_block_rays / W;
-    StreamPackets<W>& stream = stream_packets<W>();
-    stream.clear();
-    for (size_t b = first; b < last; b += max_block_rays) {
-        const size_t n = std::min<size_t>(max_block_rays, last - b);
-        if (!as_block(rays, b, n, coherence)) {
-            stream.add(rays, b, n);
-            continue;
-        }
-        RayPacket<W> packets[per_block];
-        vmask<W> active[per_block];
-        HitPacket<W> hits[per_block];
-        uint32_t lanes[per_block];
-        const int count = load_block<W>(rays, b, n, packets, active, lanes);
-        intersect_closest_block(scene, accel, packets, active, hits, count);
-        store_block<W>(scene, rays, hits, lanes, b, n, out);
-    }
-    if (stream.count == 0) return;
-    intersect_closest_stream(scene, accel, stream.rays.data(), stream.active.get(),
-                             stream.hits.data(), stream.count);
-    for (const auto& block : stream.blocks)
-        store_block<W>(scene, rays, &stream.hits[size_t(block.packet)],
-                       &stream.lanes[size_t(block.packet)], block.first, block.n, out);
+    StreamPackets<W>& s = stream_packets<W>();
+    packet_task<W>(
+        rays, coherence, first, last, s,
+        [&](int at, int count, size_t b, size_t n) {
+            const size_t a = size_t(at);
+            intersect_closest_block(scene, accel, &s.rays[a], &s.active[a], &s.hits[a], count);
+            store_block<W>(scene, rays, &s.hits[a], &s.lanes[a], b, n, out);
+        },
+        [&] {
+            intersect_closest_stream(scene, accel, s.rays.data(), s.active.get(), s.hits.data(),
+                                     s.count);
+            for (const auto& block : s.blocks)
+                store_block<W>(scene, rays, &s.hits[size_t(block.packet)],
+                               &s.lanes[size_t(block.packet)], block.first, block.n, out);
+        });
 }
 
 template <int W>
 void any_packet_task(const Scene& scene, const Accel& accel, const RayArrays& rays, uint8_t* out,
                      Coherence coherence, size_t first, size_t last) {
-    constexpr int per_block = max_block_rays / W;
-    StreamPackets<W>& stream = stream_packets<W>();
-    stream.clear();
-    for (size_t b = first; b < last; b += max_block_rays) {
-        const size_t n = std::min<size_t>(max_block_rays, last - b);
-        if (!as_block(rays, b, n, coherence)) {
-            stream.add(rays, b, n);
-            continue;
-        }
-        RayPacket<W> packets[per_block];
-        vmask<W> active[per_block], occluded[per_block];
-        uint32_t lanes[per_block];
-        const int count = load_block<W>(rays, b, n, packets, active, lanes);
-        intersect_any_block(scene, accel, packets, active, occluded, count);
-        store_occluded<W>(occluded, lanes, b, n, out);
-    }
-    if (stream.count == 0) return;
-    intersect_any_stream(scene, accel, stream.rays.data(), stream.active.get(),
-                         stream.occluded.get(), stream.count);
-    for (const auto& block : stream.blocks)
-        store_occluded<W>(&stream.occluded[size_t(block.packet)],
-                          &stream.lanes[size_t(block.packet)], block.first, block.n, out);
+    StreamPackets<W>& s = stream_packets<W>();
+    packet_task<W>(
+        rays, coherence, first, last, s,
+        [&](int at, int count, size_t b, size_t n) {
+            const size_t a = size_t(at);
+            intersect_any_block(scene, accel, &s.rays[a], &s.active[a], &s.occluded[a], count);
+            store_occluded<W>(&s.occluded[a], &s.lanes[a], b, n, out);
+        },
+        [&] {
+            intersect_any_stream(scene, accel, s.rays.data(), s.active.get(), s.occluded.get(),
+                                 s.count);
+            for (const auto& block : s.blocks)
+                store_occluded<W>(&s.occluded[size_t(block.packet)], &s.lanes[size_t(block.packet)],
+                                  block.first, block.n, out);
+        });
 }
 
 }  // namespace
 
 bool rays_coherent(const RayArrays& rays, size_t first, size_t count) {
-    vec3 first_dir{0.0f};
-    bool have_first = false;
+    ConeTest cone;
     for (size_t i = first; i < first + count; ++i) {
         Ray ray;
-        if (!read_ray(rays, i, ray)) continue;
-        const vec3 d = glm::normalize(ray.dir);
-        if (!have_first) {
-            first_dir = d, have_first = true;
-        } else if (!(glm::dot(d, first_dir) >= 0.9f)) {
-            return false;
-        }
+        if (read_ray(rays, i, ray)) cone.add(ray.dir);
     }
-    return true;
+    return cone.inside;
 }
 
 void intersect_closest_batch(const Scene& scene, const Accel& accel, const RayArrays& rays,
@@ -260,7 +288,7 @@ void intersect_closest_batch(const Scene& scene, const Accel& accel, const RayAr
             Ray ray;
             Hit hit;
             if (read_ray(rays, i, ray)) hit = intersect_closest(scene, accel, ray);
-            write_hit(scene, ray, hit, i, hits);
+            write_hit(scene, rays, hit, i, hits);
         }
     });
 }
