@@ -247,6 +247,16 @@ py::dict info(const SceneHandle& h) {
     d["load_ms"] = h.load_ms;
     d["build_ms"] = h.build_ms;
     d["build"] = "median split";
+    BuildPhases sum;  // the meshes' builds, phase by phase (ms)
+    for (const MeshAccel& m : h.accel.meshes) sum += m.phases;
+    py::dict phases;
+    phases["centroids"] = sum.centroids;
+    phases["sorts"] = sum.sorts;
+    phases["splits"] = sum.splits;
+    phases["vertices"] = sum.vertices;
+    phases["boxes"] = sum.boxes;
+    phases["collapse"] = sum.collapse;
+    d["build_phases_ms"] = phases;
     return d;
 }
 

@@ -2,9 +2,10 @@
 // .npy file) against one mesh, through every contender in one run: Raylane's scalar path and
 // packet path (traverse/intersect_batch.h, the code behind the Python module's Mesh.intersect:
 // Packet picks blocks or streams per 256 rays, Block and Stream force one), and Embree 3
-// (rtcIntersect1 / 16 / 1M, rtcOccluded1 / 16 / 1M) when it is installed. Closest hits and
-// any-hit queries (t_max = inf), on 1 thread and on all. The mesh is the model file as it is
-// (load_mesh, as raylane.load_mesh reads it), not a scene's placement of it.
+// (rtcIntersect1 / 16 / 1M, rtcOccluded1 / 16 / 1M) when it is installed; every contender writes
+// the answers the Python module returns (t, primitive, u, v, unit normal; occluded flags). Closest
+// hits and any-hit queries (t_max = inf), on 1 thread and on all. The mesh is the model file as it
+// is (load_mesh, as raylane.load_mesh reads it), not a scene's placement of it.
 #pragma once
 
 #include <benchmark/benchmark.h>
@@ -112,7 +113,8 @@ void run_ray_file(benchmark::State& state, int threads, bool whole, Body&& body)
 }
 
 /// Scalar, Packet, Block and Stream: intersect_closest_batch / intersect_any_batch on the
-/// whole file (they spread the rays over the threads themselves).
+/// whole file (they spread the rays over the threads themselves), writing the arrays that
+/// Mesh.intersect and Mesh.occluded return.
 inline void bench_ray_file_batch(benchmark::State& state, bool any_hit, BatchParams params) {
     const RayFileWorkload& w = ray_file_workload();
     const size_t n = w.count;
@@ -138,29 +140,49 @@ inline RTCRayHit embree_ray(const float* r) {
     return rh;
 }
 
+/// The arrays every contender writes, as Mesh.intersect and Mesh.occluded return them: t
+/// (inf on a miss), primitive (-1), u, v, unit geometric normal (0 on a miss); occluded.
+struct RayFileOutputs {
+    std::vector<float> t, u, v, normal;
+    std::vector<int32_t> prim;
+    std::vector<uint8_t> occluded;
+    explicit RayFileOutputs(size_t n) : t(n), u(n), v(n), normal(3 * n), prim(n), occluded(n) {}
+    /// Ray i's answer from Embree's hit (Ng is Embree's unnormalised geometric normal).
+    void set(size_t i, bool hit, float t_hit, unsigned id, float u_hit, float v_hit, float nx,
+             float ny, float nz) {
+        t[i] = hit ? t_hit : infinity;
+        prim[i] = hit ? int32_t(id) : -1;
+        u[i] = hit ? u_hit : 0.0f, v[i] = hit ? v_hit : 0.0f;
+        const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
+        const float s = hit && len > 0.0f ? 1.0f / len : 0.0f;
+        normal[3 * i] = nx * s, normal[3 * i + 1] = ny * s, normal[3 * i + 2] = nz * s;
+    }
+};
+
 /// Embree1 (one ray at a time), Embree16 (packets of 16 consecutive rays, `coherent` context
-/// flag or not) and Embree1M (streams of 256 rays).
+/// flag or not) and Embree1M (streams of 256 rays). Each writes the answers Mesh.intersect and
+/// Mesh.occluded return (RayFileOutputs), as the Raylane contenders do.
 inline void bench_ray_file_embree(benchmark::State& state, bool any_hit, int api, bool coherent,
                                   int threads) {
     const RayFileWorkload& w = ray_file_workload();
+    RayFileOutputs out(w.count);
     run_ray_file(state, threads, false, [&](size_t first, size_t last) {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         ctx.flags =
             coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
         if (api == 1) {
-            unsigned sum = 0;
             for (size_t i = first; i < last; ++i) {
                 RTCRayHit rh = embree_ray(&w.rays[6 * i]);
                 if (any_hit) {
                     rtcOccluded1(w.rtc_scene, &ctx, &rh.ray);
-                    sum += rh.ray.tfar < 0.0f;
+                    out.occluded[i] = rh.ray.tfar < 0.0f;
                 } else {
                     rtcIntersect1(w.rtc_scene, &ctx, &rh);
-                    sum += rh.hit.primID;
+                    out.set(i, rh.hit.geomID != RTC_INVALID_GEOMETRY_ID, rh.ray.tfar, rh.hit.primID,
+                            rh.hit.u, rh.hit.v, rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
                 }
             }
-            benchmark::DoNotOptimize(sum);
         } else if (api == 16) {
             for (size_t i = first; i < last; i += 16) {
                 alignas(64) RTCRayHit16 rh;
@@ -179,7 +201,15 @@ inline void bench_ray_file_embree(benchmark::State& state, bool any_hit, int api
                     rtcOccluded16(valid, w.rtc_scene, &ctx, &rh.ray);
                 else
                     rtcIntersect16(valid, w.rtc_scene, &ctx, &rh);
-                benchmark::DoNotOptimize(rh.hit.primID[0]);
+                for (size_t k = 0; k < 16 && i + k < last; ++k) {
+                    if (any_hit) {
+                        out.occluded[i + k] = rh.ray.tfar[k] < 0.0f;
+                    } else {
+                        out.set(i + k, rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID, rh.ray.tfar[k],
+                                rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k], rh.hit.Ng_x[k],
+                                rh.hit.Ng_y[k], rh.hit.Ng_z[k]);
+                    }
+                }
             }
         } else {
             alignas(64) RTCRayHit rh[256];
@@ -189,13 +219,18 @@ inline void bench_ray_file_embree(benchmark::State& state, bool any_hit, int api
                 alignas(64) RTCRay r[256];
                 for (size_t k = 0; k < n; ++k) r[k] = rh[k].ray;
                 rtcOccluded1M(w.rtc_scene, &ctx, r, unsigned(n), sizeof(RTCRay));
-                benchmark::DoNotOptimize(r[0].tfar);
+                for (size_t k = 0; k < n; ++k) out.occluded[first + k] = r[k].tfar < 0.0f;
             } else {
                 rtcIntersect1M(w.rtc_scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
-                benchmark::DoNotOptimize(rh[0].hit.primID);
+                for (size_t k = 0; k < n; ++k)
+                    out.set(first + k, rh[k].hit.geomID != RTC_INVALID_GEOMETRY_ID, rh[k].ray.tfar,
+                            rh[k].hit.primID, rh[k].hit.u, rh[k].hit.v, rh[k].hit.Ng_x,
+                            rh[k].hit.Ng_y, rh[k].hit.Ng_z);
             }
         }
     });
+    benchmark::DoNotOptimize(out.prim.data());
+    benchmark::DoNotOptimize(out.occluded.data());
 }
 #endif
 

@@ -113,6 +113,9 @@ def test_info_gives_the_command_lines_figures(bunny):
            f"per node, {w['leaves']} leaves" in out
     assert f"memory     {d['memory_mib']:.2f} MiB" in out
     assert d["triangles"] == m["triangles"] > 60_000
+    assert set(d["build_phases_ms"]) == {"centroids", "sorts", "splits", "vertices", "boxes",
+                                         "collapse"}
+    assert sum(d["build_phases_ms"].values()) <= d["build_ms"]
 
 
 def test_a_bad_scene_raises_the_command_lines_one_line_error(tmp_path):
