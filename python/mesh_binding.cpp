@@ -22,6 +22,7 @@ namespace {
 struct MeshHandle {
     Scene scene;
     Accel accel;
+    TriangleNormals normals;  ///< the triangles' unit normals, Mesh.intersect's `normal`
     double build_ms = 0.0;
 };
 
@@ -104,6 +105,7 @@ std::shared_ptr<MeshHandle> make_handle(Mesh mesh) {
     }
     h->scene.meshes.push_back(std::move(mesh));
     h->accel = build_accel(h->scene, BuildParams{});
+    h->normals = make_triangle_normals(h->scene);
     h->build_ms = elapsed_ms(t);
     return h;
 }
@@ -272,7 +274,7 @@ py::dict intersect(const MeshHandle& h, const py::object& origins, const py::obj
     out.prim = prim.mutable_data(), out.normal = normal.mutable_data();
     {
         py::gil_scoped_release release;
-        intersect_closest_batch(h.scene, h.accel, in.rays, out, params);
+        intersect_closest_batch(h.scene, h.accel, in.rays, out, params, &h.normals);
     }
     py::dict d;
     d["t"] = t, d["prim"] = prim, d["u"] = u, d["v"] = v, d["normal"] = normal;

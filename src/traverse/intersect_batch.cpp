@@ -6,6 +6,7 @@
 #include <xmmintrin.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -43,11 +44,13 @@ bool read_ray(const RayArrays& rays, size_t i, Ray& ray) {
     return finite && ray.dir != vec3(0.0f) && ray.t_max > 0.0f;
 }
 
-/// The geometric normal surface_at gives for ray i's hit, straight from the triangle's corners
-/// for a mesh.
-vec3 geometric_normal(const Scene& scene, const RayArrays& rays, size_t i, const Hit& hit) {
+/// The geometric normal surface_at gives for ray i's hit: from the table when there is one,
+/// straight from the triangle's corners for a mesh otherwise.
+vec3 geometric_normal(const Scene& scene, const TriangleNormals* normals, const RayArrays& rays,
+                      size_t i, const Hit& hit) {
     if (!hit.hit()) return vec3(0.0f);
     const Object& object = scene.objects[hit.object];
+    if (normals && object.kind == ShapeKind::mesh) return normals->meshes[object.shape][hit.prim];
     if (object.kind != ShapeKind::mesh) {
         Ray ray;
         read_ray(rays, i, ray);
@@ -60,15 +63,23 @@ vec3 geometric_normal(const Scene& scene, const RayArrays& rays, size_t i, const
         .normal;
 }
 
-void write_hit(const Scene& scene, const RayArrays& rays, const Hit& hit, size_t i,
-               const HitBuffers& out) {
+/// The scene and what a batch writes.
+struct Output {
+    const Scene& scene;
+    const RayArrays& rays;
+    const HitBuffers& hits;
+    const TriangleNormals* normals;
+};
+
+void write_hit(const Output& o, const Hit& hit, size_t i) {
+    const HitBuffers& out = o.hits;
     if (out.t) out.t[i] = hit.t;
     if (out.prim) out.prim[i] = static_cast<int32_t>(hit.prim);
     if (out.object) out.object[i] = static_cast<int32_t>(hit.object);
     if (out.u) out.u[i] = hit.uv.x;
     if (out.v) out.v[i] = hit.uv.y;
     if (out.normal) {
-        const vec3 n = geometric_normal(scene, rays, i, hit);
+        const vec3 n = geometric_normal(o.scene, o.normals, o.rays, i, hit);
         out.normal[3 * i] = n.x, out.normal[3 * i + 1] = n.y, out.normal[3 * i + 2] = n.z;
     }
 }
@@ -105,44 +116,69 @@ struct ConeTest {
 };
 
 /// Packets of rays first .. first + n - 1 (n <= max_block_rays): ceil(n / W) packets, lanes of
-/// rays that are not traced inactive with a benign ray; lanes[p] holds packet p's active lanes.
-/// Returns the packet count; `coherent` tells whether the rays pass the ConeTest.
+/// rays that are not traced (read_ray's rule, tested a packet at a time) inactive with a benign
+/// ray; lanes[p] holds packet p's active lanes. Returns the packet count; `coherent` tells
+/// whether the traced rays pass the ConeTest.
 template <int W>
 int load_block(const RayArrays& rays, size_t first, size_t n, RayPacket<W>* packets,
                vmask<W>* active, uint32_t* lanes, bool& coherent) {
     alignas(64) float c[7][max_block_rays];
     const int count = static_cast<int>((n + W - 1) / W);
-    for (int p = 0; p < count; ++p) lanes[p] = 0;
-    ConeTest cone;
-    for (size_t k = 0; k < size_t(count) * W; ++k) {
-        Ray ray;
-        const bool traced = k < n && read_ray(rays, first + k, ray);
-        if (traced) {
-            lanes[k / W] |= 1u << (k % W);
-            cone.add(ray.dir);
-        } else {
-            ray = Ray{vec3(0.0f), vec3(0.0f, 0.0f, 1.0f), 0.0f, -1.0f};
-        }
-        c[0][k] = ray.org.x, c[1][k] = ray.org.y, c[2][k] = ray.org.z;
-        c[3][k] = ray.dir.x, c[4][k] = ray.dir.y, c[5][k] = ray.dir.z;
-        c[6][k] = ray.t_max;
+    const float* o = rays.org + first * rays.org_stride;
+    const float* d = rays.dir + first * rays.dir_stride;
+    for (size_t k = 0; k < n; ++k, o += rays.org_stride, d += rays.dir_stride) {
+        c[0][k] = o[0], c[1][k] = o[1], c[2][k] = o[2];
+        c[3][k] = d[0], c[4][k] = d[1], c[5][k] = d[2];
+        c[6][k] = rays.t_max ? rays.t_max[first + k] : rays.t_max_all;
     }
+    for (size_t k = n; k < size_t(count) * W; ++k) {  // padding: a benign inactive ray
+        c[0][k] = c[1][k] = c[2][k] = c[3][k] = c[4][k] = 0.0f;
+        c[5][k] = 1.0f, c[6][k] = -1.0f;
+    }
+    const vfloat<W> zero(0.0f);
+    auto finite = [&](vfloat<W> x) { return (x - x) == zero; };  // false for inf and NaN
+    int first_lane = -1;
     for (int p = 0; p < count; ++p) {
-        const size_t o = size_t(p) * W;
-        packets[p].org = load_vec3<W>(&c[0][o], &c[1][o], &c[2][o]);
-        packets[p].dir = load_vec3<W>(&c[3][o], &c[4][o], &c[5][o]);
-        packets[p].t_min = vfloat<W>(0.0f);
-        packets[p].t_max = load<W>(&c[6][o]);
-        active[p] = mask_from_bits<W>(lanes[p]);
+        const size_t at = size_t(p) * W;
+        RayPacket<W> r;
+        r.org = load_vec3<W>(&c[0][at], &c[1][at], &c[2][at]);
+        r.dir = load_vec3<W>(&c[3][at], &c[4][at], &c[5][at]);
+        r.t_max = load<W>(&c[6][at]);
+        const vmask<W> on = mask_and(
+            mask_and(mask_and(finite(r.org.x), finite(r.org.y)),
+                     mask_and(finite(r.org.z), finite(r.dir.x))),
+            mask_and(mask_and(finite(r.dir.y), finite(r.dir.z)),
+                     mask_and(mask_or(mask_or(r.dir.x != zero, r.dir.y != zero), r.dir.z != zero),
+                              r.t_max > zero)));
+        packets[p].org = select(on, r.org, make_vec3<W>(0.0f, 0.0f, 0.0f));
+        packets[p].dir = select(on, r.dir, make_vec3<W>(0.0f, 0.0f, 1.0f));
+        packets[p].t_min = zero;
+        packets[p].t_max = select(on, r.t_max, vfloat<W>(-1.0f));
+        active[p] = on;
+        lanes[p] = bits(on);
+        if (first_lane < 0 && lanes[p] != 0) first_lane = p * W + std::countr_zero(lanes[p]);
     }
-    coherent = cone.inside;
+    // the ConeTest against the first traced ray's direction, a packet at a time
+    coherent = true;
+    if (first_lane < 0) return count;
+    const size_t f = size_t(first_lane);
+    const vec3 d0(c[3][f], c[4][f], c[5][f]);
+    const vfloat<W> len0(glm::dot(d0, d0));
+    for (int p = 0; p < count && coherent; ++p) {
+        const Vec3<W>& dir = packets[p].dir;
+        const vfloat<W> dot =
+            dir.x * vfloat<W>(d0.x) + dir.y * vfloat<W>(d0.y) + dir.z * vfloat<W>(d0.z);
+        const vfloat<W> len2 = dir.x * dir.x + dir.y * dir.y + dir.z * dir.z;
+        const vmask<W> inside = mask_and(dot > zero, dot * dot >= vfloat<W>(0.81f) * len2 * len0);
+        coherent = none(mask_andnot(active[p], inside));
+    }
     return count;
 }
 
 /// Writes the hits of a block loaded by load_block.
 template <int W>
-void store_block(const Scene& scene, const RayArrays& rays, const HitPacket<W>* hits,
-                 const uint32_t* lanes, size_t first, size_t n, const HitBuffers& out) {
+void store_block(const Output& out, const HitPacket<W>* hits, const uint32_t* lanes, size_t first,
+                 size_t n) {
     alignas(64) float t[max_block_rays], u[max_block_rays], v[max_block_rays];
     alignas(64) int32_t prim[max_block_rays], object[max_block_rays];
     const size_t count = (n + W - 1) / W;
@@ -157,7 +193,7 @@ void store_block(const Scene& scene, const RayArrays& rays, const HitPacket<W>* 
             hit.prim = static_cast<uint32_t>(prim[k]),
             hit.object = static_cast<uint32_t>(object[k]);
         }
-        write_hit(scene, rays, hit, first + k, out);
+        write_hit(out, hit, first + k);
     }
 }
 
@@ -226,22 +262,23 @@ void packet_task(const RayArrays& rays, Coherence coherence, size_t first, size_
 }
 
 template <int W>
-void closest_packet_task(const Scene& scene, const Accel& accel, const RayArrays& rays,
-                         const HitBuffers& out, Coherence coherence, size_t first, size_t last) {
+void closest_packet_task(const Scene& scene, const Accel& accel, const Output& out,
+                         Coherence coherence, size_t first, size_t last) {
+    const RayArrays& rays = out.rays;
     StreamPackets<W>& s = stream_packets<W>();
     packet_task<W>(
         rays, coherence, first, last, s,
         [&](int at, int count, size_t b, size_t n) {
             const size_t a = size_t(at);
             intersect_closest_block(scene, accel, &s.rays[a], &s.active[a], &s.hits[a], count);
-            store_block<W>(scene, rays, &s.hits[a], &s.lanes[a], b, n, out);
+            store_block<W>(out, &s.hits[a], &s.lanes[a], b, n);
         },
         [&] {
             intersect_closest_stream(scene, accel, s.rays.data(), s.active.get(), s.hits.data(),
                                      s.count);
             for (const auto& block : s.blocks)
-                store_block<W>(scene, rays, &s.hits[size_t(block.packet)],
-                               &s.lanes[size_t(block.packet)], block.first, block.n, out);
+                store_block<W>(out, &s.hits[size_t(block.packet)], &s.lanes[size_t(block.packet)],
+                               block.first, block.n);
         });
 }
 
@@ -276,19 +313,34 @@ bool rays_coherent(const RayArrays& rays, size_t first, size_t count) {
     return cone.inside;
 }
 
+TriangleNormals make_triangle_normals(const Scene& scene) {
+    TriangleNormals normals;
+    for (const Mesh& mesh : scene.meshes) {
+        std::vector<vec3>& n = normals.meshes.emplace_back(mesh.tris.size());
+        for (size_t i = 0; i < mesh.tris.size(); ++i) {
+            const glm::uvec3 t = mesh.tris[i];
+            n[i] = geometry_triangle<float>(mesh.positions[t.x], mesh.positions[t.y],
+                                            mesh.positions[t.z], 0.0f, 0.0f)
+                       .normal;
+        }
+    }
+    return normals;
+}
+
 void intersect_closest_batch(const Scene& scene, const Accel& accel, const RayArrays& rays,
-                             const HitBuffers& hits, const BatchParams& params) {
+                             const HitBuffers& hits, const BatchParams& params,
+                             const TriangleNormals* normals) {
+    const Output out{scene, rays, hits, normals};
     run_tasks(rays.count, params.threads, [&](size_t first, size_t last) {
         if (params.path == BatchPath::packet) {
-            closest_packet_task<native_width>(scene, accel, rays, hits, params.coherence, first,
-                                              last);
+            closest_packet_task<native_width>(scene, accel, out, params.coherence, first, last);
             return;
         }
         for (size_t i = first; i < last; ++i) {
             Ray ray;
             Hit hit;
             if (read_ray(rays, i, ray)) hit = intersect_closest(scene, accel, ray);
-            write_hit(scene, rays, hit, i, hits);
+            write_hit(out, hit, i);
         }
     });
 }

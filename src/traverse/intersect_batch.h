@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "accel/bvh.h"
 #include "scene/scene.h"
@@ -48,6 +49,13 @@ struct BatchParams {
     int threads = 0;  ///< 0 = all hardware threads
 };
 
+/// The unit geometric normal of every triangle of every mesh (Scene::meshes order), as
+/// surface_at gives it, so that a batch writes HitBuffers::normal with one look-up per hit.
+struct TriangleNormals {
+    std::vector<std::vector<vec3>> meshes;
+};
+TriangleNormals make_triangle_normals(const Scene& scene);
+
 /// Rays per task of a batch: each task is a stream of at most this many rays.
 inline constexpr size_t batch_task_rays = 16384;
 
@@ -55,8 +63,11 @@ inline constexpr size_t batch_task_rays = 16384;
 /// direction is zero, or whose t_max is not above 0 (NaN included) is a miss without being traced.
 /// Both paths give the same hits, bit for bit (prim, object, t, u, v). Flush-to-zero is set while
 /// tracing, as the renderers do, and the calling thread's floating-point modes are restored.
+/// `normals`, when given, must be make_triangle_normals(scene); without it the normals are
+/// computed hit by hit.
 void intersect_closest_batch(const Scene& scene, const Accel& accel, const RayArrays& rays,
-                             const HitBuffers& hits, const BatchParams& params);
+                             const HitBuffers& hits, const BatchParams& params,
+                             const TriangleNormals* normals = nullptr);
 
 /// Whether each ray hits anything in (0, t_max): occluded[i] is 1 or 0. Rays that are not
 /// traced (see intersect_closest_batch) are 0.

@@ -111,6 +111,12 @@ TEST(IntersectBatch, PacketPathMatchesScalarPathBitForBit) {
             intersect_closest_batch(m.scene, m.accel, a, packet.buffers(),
                                     {BatchPath::packet, c, threads});
             expect_same_batch_hits(packet, scalar);
+            // the normals from a table of the triangles' normals: the same bits
+            const TriangleNormals normals = make_triangle_normals(m.scene);
+            BatchHits tabled(a.count);
+            intersect_closest_batch(m.scene, m.accel, a, tabled.buffers(),
+                                    {BatchPath::packet, c, threads}, &normals);
+            expect_same_batch_hits(tabled, scalar);
             std::vector<uint8_t> occluded(a.count, 7);
             intersect_any_batch(m.scene, m.accel, a, occluded.data(),
                                 {BatchPath::packet, c, threads});
