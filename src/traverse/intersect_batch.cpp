@@ -175,25 +175,35 @@ int load_block(const RayArrays& rays, size_t first, size_t n, RayPacket<W>* pack
     return count;
 }
 
-/// Writes the hits of a block loaded by load_block.
+/// Writes the hits of a block loaded by load_block: array by array, then the normals.
 template <int W>
-void store_block(const Output& out, const HitPacket<W>* hits, const uint32_t* lanes, size_t first,
+void store_block(const Output& out, const HitPacket<W>* hits, const vmask<W>* active, size_t first,
                  size_t n) {
     alignas(64) float t[max_block_rays], u[max_block_rays], v[max_block_rays];
     alignas(64) int32_t prim[max_block_rays], object[max_block_rays];
     const size_t count = (n + W - 1) / W;
-    for (size_t p = 0; p < count; ++p) {
-        store(&t[p * W], hits[p].t), store(&u[p * W], hits[p].u), store(&v[p * W], hits[p].v);
-        store(&prim[p * W], hits[p].prim), store(&object[p * W], hits[p].object);
+    const vfloat<W> zero(0.0f);
+    for (size_t p = 0; p < count; ++p) {  // inactive lanes: a miss
+        const vmask<W> a = active[p];
+        store(&t[p * W], select(a, hits[p].t, vfloat<W>(infinity)));
+        store(&u[p * W], select(a, hits[p].u, zero)), store(&v[p * W], select(a, hits[p].v, zero));
+        store(&prim[p * W], select(a, hits[p].prim, vint<W>(-1)));
+        store(&object[p * W], select(a, hits[p].object, vint<W>(-1)));
     }
+    const HitBuffers& h = out.hits;
+    if (h.t) std::copy_n(t, n, h.t + first);
+    if (h.u) std::copy_n(u, n, h.u + first);
+    if (h.v) std::copy_n(v, n, h.v + first);
+    if (h.prim) std::copy_n(prim, n, h.prim + first);
+    if (h.object) std::copy_n(object, n, h.object + first);
+    if (!h.normal) return;
     for (size_t k = 0; k < n; ++k) {
         Hit hit;
-        if ((lanes[k / W] >> (k % W)) & 1u) {
-            hit.t = t[k], hit.uv = vec2(u[k], v[k]);
-            hit.prim = static_cast<uint32_t>(prim[k]),
-            hit.object = static_cast<uint32_t>(object[k]);
-        }
-        write_hit(out, hit, first + k);
+        hit.t = t[k], hit.uv = vec2(u[k], v[k]);
+        hit.prim = static_cast<uint32_t>(prim[k]), hit.object = static_cast<uint32_t>(object[k]);
+        const vec3 nrm = geometric_normal(out.scene, out.normals, out.rays, first + k, hit);
+        float* dst = h.normal + 3 * (first + k);
+        dst[0] = nrm.x, dst[1] = nrm.y, dst[2] = nrm.z;
     }
 }
 
@@ -271,13 +281,13 @@ void closest_packet_task(const Scene& scene, const Accel& accel, const Output& o
         [&](int at, int count, size_t b, size_t n) {
             const size_t a = size_t(at);
             intersect_closest_block(scene, accel, &s.rays[a], &s.active[a], &s.hits[a], count);
-            store_block<W>(out, &s.hits[a], &s.lanes[a], b, n);
+            store_block<W>(out, &s.hits[a], &s.active[a], b, n);
         },
         [&] {
             intersect_closest_stream(scene, accel, s.rays.data(), s.active.get(), s.hits.data(),
                                      s.count);
             for (const auto& block : s.blocks)
-                store_block<W>(out, &s.hits[size_t(block.packet)], &s.lanes[size_t(block.packet)],
+                store_block<W>(out, &s.hits[size_t(block.packet)], &s.active[size_t(block.packet)],
                                block.first, block.n);
         });
 }
