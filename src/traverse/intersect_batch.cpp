@@ -210,10 +210,10 @@ void store_block(const Output& out, const HitPacket<W>* hits, const vmask<W>* ac
 template <int W>
 void store_occluded(const vmask<W>* occluded, const uint32_t* lanes, size_t first, size_t n,
                     uint8_t* out) {
-    for (size_t k = 0; k < n; ++k) {
-        const size_t p = k / W;
-        const uint32_t lane = static_cast<uint32_t>(k % W);
-        out[first + k] = static_cast<uint8_t>((bits(occluded[p]) & lanes[p]) >> lane & 1u);
+    for (size_t p = 0; p * W < n; ++p) {
+        const uint32_t hit = bits(occluded[p]) & lanes[p];
+        for (size_t k = p * W; k < std::min(n, (p + 1) * W); ++k)
+            out[first + k] = static_cast<uint8_t>(hit >> (k - p * W) & 1u);
     }
 }
 
