@@ -1,8 +1,9 @@
-"""Raylane's hits against Embree's on the same ray file: `bench_intersect --rays FILE.npy
+"""bench_intersect's ray files: Raylane's hits against Embree's on the same ray file: `bench_intersect --rays FILE.npy
 --embree-hits OUT.npy` writes Embree's closest hits (t, primitive, u, v) for rays saved by
 raylane.save_rays. Two watertight tests may part on rays that graze an edge, so the rays
 compared are those whose hit lies away from every edge in both answers."""
 import os
+import re
 import subprocess
 
 import numpy as np
@@ -46,3 +47,24 @@ def test_hits_agree_with_embree_on_a_ray_file(tmp_path, model):
     assert np.array_equal(ours["prim"][both], e_prim[both].astype(np.int32))
     rel = np.abs(ours["t"][both] - e_t[both]) / e_t[both]
     assert rel.max() <= 1e-5
+
+
+def test_bench_intersect_races_a_ray_file_and_prints_its_table(tmp_path):
+    if not BENCH:
+        pytest.skip("bench_intersect was not built (Google Benchmark missing)")
+    mesh = raylane.load_mesh(model_or_skip("bunny.ply"))
+    origins, directions = random_rays(mesh, 2000, seed=17)
+    rays_file = str(tmp_path / "rays.npy")
+    np.save(rays_file, np.hstack([origins, directions]))  # plain numpy.save works too
+    p = subprocess.run([BENCH, "--rays", rays_file, "--mesh", "bunny.ply", "--summary",
+                        "--benchmark_min_time=0.01", "--benchmark_filter=threads:1/|Build"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert f"2000 rays of {rays_file}" in p.stdout
+    for query in ("Closest", "Occluded"):
+        row = re.search(rf"^\| {query}, 1 thread \|(.*)$", p.stdout, re.M)
+        assert row, p.stdout
+        figures = [f.strip() for f in row.group(1).split("|") if f.strip()]
+        # Scalar, Packet, Block, Stream always; Embree's four when it is built in
+        assert all(re.fullmatch(r"[0-9.e+]+", f) for f in figures[:4]), figures
+    assert re.search(r"BVH build \(BM_RayFile_Build\): [0-9.]+ ms", p.stdout)
