@@ -1,8 +1,8 @@
 """bench_intersect's ray files. Raylane's hits against Embree's on the same rays:
 `bench_intersect --rays FILE.npy --embree-hits OUT.npy` writes Embree's closest hits (t,
-primitive, u, v) for rays saved by raylane.save_rays. Two watertight tests may part on rays that graze an edge, so the rays
-compared are those whose hit lies away from every edge in both answers. And the benchmark run
-on a ray file, with its table."""
+primitive, u, v) for rays saved by raylane.save_rays. Two watertight tests may part on rays
+that graze an edge, so the rays compared are those whose hit lies away from every edge in both
+answers. And the benchmark run on a ray file, with its table."""
 import os
 import re
 import subprocess
