@@ -22,6 +22,14 @@ struct BadArgument : std::invalid_argument {
     using std::invalid_argument::invalid_argument;
 };
 
+/// The pieces one after the other, by append (GCC 12 warns falsely on chains of operator+).
+template <class... Pieces>
+std::string join(const Pieces&... pieces) {
+    std::string s;
+    (s.append(pieces), ...);
+    return s;
+}
+
 /// Throws MissingFile "path: no such file" unless `path` names an existing file or folder.
 void require_file(const std::string& path);
 

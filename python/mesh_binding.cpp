@@ -117,15 +117,15 @@ std::shared_ptr<MeshHandle> mesh_from_arrays(const py::object& vertices_obj,
     require_shape(vertices, "vertices", 3);
     require_shape(triangles, "triangles", 3);
     if (!vertices.dtype().is(py::dtype::of<float>()))
-        throw BadArgument("vertices: dtype " + dtype_text(vertices) +
-                          ", expected float32 (vertices.astype(numpy.float32))");
+        throw BadArgument(join("vertices: dtype ", dtype_text(vertices),
+                               ", expected float32 (vertices.astype(numpy.float32))"));
     const char kind = triangles.dtype().kind();
     if (kind != 'i' && kind != 'u')
-        throw BadArgument("triangles: dtype " + dtype_text(triangles) +
-                          ", expected an integer type (int32, int64, uint32, ...)");
+        throw BadArgument(join("triangles: dtype ", dtype_text(triangles),
+                               ", expected an integer type (int32, int64, uint32, ...)"));
     const py::ssize_t n = vertices.shape(0), m = triangles.shape(0);
     if (n > py::ssize_t(UINT32_MAX))
-        throw BadArgument("vertices: " + std::to_string(n) + " rows, more than 2^32 - 1");
+        throw BadArgument(join("vertices: ", std::to_string(n), " rows, more than 2^32 - 1"));
     Mesh mesh;
     mesh.name = "<arrays>";
     mesh.positions.resize(size_t(n));
@@ -133,9 +133,9 @@ std::shared_ptr<MeshHandle> mesh_from_arrays(const py::object& vertices_obj,
         vec3& p = mesh.positions[size_t(i)];
         for (py::ssize_t j = 0; j < 3; ++j) p[int(j)] = element<float, float>(vertices, i, j);
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw BadArgument("vertices: row " + std::to_string(i) + " is not finite (" +
-                              std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
-                              std::to_string(p.z) + ")");
+            throw BadArgument(join("vertices: row ", std::to_string(i), " is not finite (",
+                                   std::to_string(p.x), ", ", std::to_string(p.y), ", ",
+                                   std::to_string(p.z), ")"));
     }
     mesh.tris.resize(size_t(m));
     for (py::ssize_t i = 0; i < m; ++i) {
@@ -190,7 +190,7 @@ FloatRows float_rows(const py::object& obj, const char* name, py::ssize_t cols) 
     require_shape(a, name, cols);
     const char kind = a.dtype().kind();
     if (kind != 'f' && kind != 'i' && kind != 'u')
-        throw BadArgument(std::string(name) + ": dtype " + dtype_text(a) + ", expected float32");
+        throw BadArgument(join(name, ": dtype ", dtype_text(a), ", expected float32"));
     const bool in_place = a.dtype().is(py::dtype::of<float>()) && a.strides(1) == 4 &&
                           a.strides(0) >= 0 && a.strides(0) % 4 == 0;
     if (!in_place) a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
@@ -221,8 +221,8 @@ RayInput ray_input(const py::object& origins, const py::object& directions,
         in.org = float_rows(origins, "origins", 3);
         in.dir = float_rows(directions, "directions", 3);
         if (in.org.rows != in.dir.rows)
-            throw BadArgument("origins and directions: " + std::to_string(in.org.rows) + " and " +
-                              std::to_string(in.dir.rows) + " rows, expected the same");
+            throw BadArgument(join("origins and directions: ", std::to_string(in.org.rows), " and ",
+                                   std::to_string(in.dir.rows), " rows, expected the same"));
         in.rays.org = in.org.data;
         in.rays.dir = in.dir.data;
         in.rays.org_stride = in.org.stride;
@@ -233,15 +233,15 @@ RayInput ray_input(const py::object& origins, const py::object& directions,
         py::array a = py::reinterpret_borrow<py::array>(tmax);
         if (a.ndim() == 1) {
             if (size_t(a.shape(0)) != in.rays.count)
-                throw BadArgument("tmax: " + std::to_string(a.shape(0)) + " values for " +
-                                  std::to_string(in.rays.count) + " rays");
+                throw BadArgument(join("tmax: ", std::to_string(a.shape(0)), " values for ",
+                                       std::to_string(in.rays.count), " rays"));
             a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
             in.t_max.keep = a;
             in.rays.t_max = static_cast<const float*>(a.data());
             return in;
         }
         if (a.ndim() != 0)
-            throw BadArgument("tmax: shape " + shape_text(a) + ", expected a number or (N,)");
+            throw BadArgument(join("tmax: shape ", shape_text(a), ", expected a number or (N,)"));
     }
     in.rays.t_max_all = tmax.cast<float>();
     return in;
@@ -252,11 +252,11 @@ BatchParams batch_params(const std::string& path, const py::object& coherent, in
     if (path == "scalar")
         p.path = BatchPath::scalar;
     else if (path != "packet")
-        throw BadArgument("path: unknown path \"" + path + "\" (use packet or scalar)");
+        throw BadArgument(join("path: unknown path \"", path, "\" (use packet or scalar)"));
     if (!coherent.is_none())
         p.coherence = coherent.cast<bool>() ? Coherence::coherent : Coherence::incoherent;
     if (threads < 0 || threads > 1024)
-        throw BadArgument("threads: " + std::to_string(threads) + " is outside 0 .. 1024");
+        throw BadArgument(join("threads: ", std::to_string(threads), " is outside 0 .. 1024"));
     p.threads = threads;
     return p;
 }

@@ -11,7 +11,7 @@ namespace raylane::python {
 
 void require_file(const std::string& path) {
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw MissingFile(path + ": no such file");
+    if (!std::filesystem::exists(path, ec)) throw MissingFile(join(path, ": no such file"));
 }
 
 }  // namespace raylane::python

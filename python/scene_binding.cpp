@@ -95,12 +95,12 @@ py::array film_array(const Film& film, bool one_channel) {
 py::array render(SceneHandle& h, int spp, int threads, const std::string& path,
                  const std::string& aov, int width, int height, uint32_t seed) {
     if (path != "packet" && path != "scalar")
-        throw BadArgument("path: unknown renderer \"" + path + "\" (use packet or scalar)");
+        throw BadArgument(join("path: unknown renderer \"", path, "\" (use packet or scalar)"));
     RenderParams params;
     Aov kind = Aov::color;
     if (!parse_aov(aov, kind))
-        throw BadArgument("aov: unknown output \"" + aov +
-                          "\" (use color, normal, depth or bvh-cost)");
+        throw BadArgument(
+            join("aov: unknown output \"", aov, "\" (use color, normal, depth or bvh-cost)"));
     Film film;
     {
         py::gil_scoped_release release;
