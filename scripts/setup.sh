@@ -3,7 +3,11 @@
 set -euo pipefail
 packages=(cmake ninja-build g++ clang libclang-rt-14-dev libxsimd-dev libtbb-dev libglm-dev
           libstb-dev libgtest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
-          libopenexr-dev libopenmpi-dev openmpi-bin procps)
+          libopenexr-dev)
+# one frame over many processes (`mpirun ... raylane render`) and its tests
+packages+=(libopenmpi-dev openmpi-bin procps)
+# the Python module (python/), its tests and the examples of docs/python.md
+packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
 # Embree is only for the baseline benchmark; the renderer never links it.
 [ "${RAYLANE_NO_EMBREE:-0}" = 1 ] || packages+=(libembree-dev)
 missing=()

@@ -7,6 +7,8 @@
 // cosine-distributed bounce ray per hit (incoherent).
 // Contenders: Raylane scalar, Raylane packet at every width, and Embree 3 (rtcIntersect1 / 1M / 16,
 // rtcOccluded1 / 16) when it is installed. 1 and 2 threads (oneTBB; chunks of 256 rays).
+// With `--rays FILE.npy [--mesh MODEL] [--embree-hits OUT.npy]`: a ray file instead
+// (traverse/ray_file_runs.h).
 #include <benchmark/benchmark.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -28,6 +30,7 @@
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/intersect_stream.h"
+#include "traverse/ray_file_runs.h"
 
 #ifdef RAYLANE_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -589,6 +592,42 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
 }  // namespace raylane
 
 int main(int argc, char** argv) {
-    raylane::register_all();
-    return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
+    // --rays FILE.npy [--mesh MODEL] [--embree-hits OUT.npy], taken out of argv
+    std::string rays, mesh = "dragon.ply", embree_hits;
+    int kept = 1;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        std::string* value = a == "--rays"          ? &rays
+                             : a == "--mesh"        ? &mesh
+                             : a == "--embree-hits" ? &embree_hits
+                                                    : nullptr;
+        if (!value) {
+            argv[kept++] = argv[i];
+            continue;
+        }
+        if (i + 1 == argc) {
+            std::fprintf(stderr, "%s: %s needs a value\n", argv[0], a.c_str());
+            return 2;
+        }
+        *value = argv[++i];
+    }
+    argc = kept;
+    argv[argc] = nullptr;
+    if (rays.empty()) {
+        raylane::register_all();
+        return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
+    }
+    try {
+        raylane::bench::load_ray_file_workload(rays, mesh);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
+        return 2;
+    }
+    if (!embree_hits.empty()) {
+        if (raylane::bench::write_embree_hits(embree_hits)) return 0;
+        std::fprintf(stderr, "%s: --embree-hits: built without Embree\n", argv[0]);
+        return 2;
+    }
+    raylane::bench::register_ray_file();
+    return raylane::bench::run_benchmarks(argc, argv, raylane::bench::print_ray_file_summary);
 }
