@@ -12,6 +12,7 @@
 // core from the ranks that render beside it.
 #include <mpi.h>
 #include <tbb/info.h>
+#include <time.h>
 
 #include <algorithm>
 #include <atomic>
@@ -108,6 +109,14 @@ std::vector<Unit> make_units(const RenderJob& job, int ranks) {
     return units;
 }
 
+/// The calling thread's CPU time in seconds: what serving costs the cores, without the time it
+/// waits for one.
+double thread_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 /// A unit's films (one per AOV of the job) as one run of floats: film after film, each row by
 /// row, 3 floats a pixel. What a worker sends.
 std::vector<float> unit_floats(const PartResult& part) {
@@ -132,21 +141,24 @@ struct Gather {
     std::map<int, int> missing;
     std::map<int, RenderStats> stats;
     double start = now_seconds();
-    double writing = 0.0;  ///< seconds spent writing frames
+    double writing = 0.0;  ///< CPU seconds of this thread spent writing frames
     RenderStats total;     ///< every frame's counts
 
-    /// Puts a unit's floats (unit_floats) in its frame; writes the frame when it is whole.
-    void add(int frame, const PixelRect& rect, const float* data, const RenderStats& s) {
+    /// Puts a unit's pixels in its frame, film k's from rgb[k] (row by row, 3 floats a pixel);
+    /// writes the frame when it is whole.
+    void add(int frame, const PixelRect& rect, const std::vector<const float*>& data,
+             const RenderStats& s) {
         auto [it, fresh] = films.try_emplace(frame);
-        if (fresh) {
-            for (Aov aov : job.aovs)
-                it->second.push_back({aov, make_film(region.width(), region.height())});
+        if (fresh) {  // every pixel comes from some unit
+            for (Aov aov : job.aovs) {
+                it->second.push_back(
+                    {aov, make_film_for_overwrite(region.width(), region.height())});
+            }
             missing[frame] = units_per_frame;
         }
-        const size_t per_film = size_t(rect.width()) * size_t(rect.height()) * 3;
         for (size_t k = 0; k < it->second.size(); ++k) {
             Film& film = it->second[k].film;
-            const float* rgb = data + k * per_film;
+            const float* rgb = data.at(k);
             for (int y = rect.y0; y < rect.y1; ++y) {
                 std::memcpy(&film.at(rect.x0 - region.x0, y - region.y0),
                             rgb + size_t(y - rect.y0) * size_t(rect.width()) * 3,
@@ -160,16 +172,16 @@ struct Gather {
         // the frame is whole: its time is the wall time since the job (or the last frame) began
         fs.seconds = now_seconds() - start;
         start = now_seconds();
-        const double t = now_seconds();
+        const double t = thread_seconds();
         write_frame(job, frame, std::move(it->second), fs);
-        writing += now_seconds() - t;
+        writing += thread_seconds() - t;
         films.erase(frame), missing.erase(frame), stats.erase(frame);
     }
 };
 
 /// A pause between two polls of a wait: a blocking MPI call polls without one, and takes a core
 /// from the ranks that render beside it.
-void pause() { std::this_thread::sleep_for(std::chrono::microseconds(100)); }
+void pause() { std::this_thread::sleep_for(std::chrono::microseconds(1000)); }
 
 /// Waits for n requests, pausing between polls.
 void wait_all(MPI_Request* requests, int n) {
@@ -203,7 +215,7 @@ constexpr int asks_ahead = 2;
 /// Rank 0's service: answers every ask, receives the workers' pixels without blocking (a large
 /// message may need its sender, busy rendering, to move it), takes rank 0's own results from
 /// `take_own(add)` (which returns true once rank 0 renders no more), gathers and writes the
-/// frames. Returns the seconds spent handling messages and pixels (not writing frames, not
+/// frames. Returns the CPU seconds spent handling messages and pixels (not writing frames, not
 /// pausing); `total` gets every frame's counts.
 template <class TakeOwn>
 double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int ranks,
@@ -221,15 +233,15 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
         MPI_Request request;
     };
     std::vector<std::unique_ptr<Receiving>> receiving;
-    auto add = [&](size_t unit, const float* rgb, const RenderStats& stats) {
-        gather.add(units[unit].frame, units[unit].rect, rgb, stats);
+    auto add = [&](size_t unit, const std::vector<const float*>& data, const RenderStats& stats) {
+        gather.add(units[unit].frame, units[unit].rect, data, stats);
         progress.step();
         ++gathered;
     };
     double busy = 0.0;
     bool own_done = false;
     while (!own_done || nones_left > 0 || gathered < units.size()) {
-        const double t = now_seconds(), written = gather.writing;
+        const double t = thread_seconds(), written = gather.writing;
         bool any = false;
         for (;;) {
             int ready = 0;
@@ -262,16 +274,26 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
         std::erase_if(receiving, [&](std::unique_ptr<Receiving>& r) {
             int done = 0;
             MPI_Test(&r->request, &done, MPI_STATUS_IGNORE);
-            if (done) add(size_t(r->header.unit), r->pixels.data(), from_header(r->header));
+            if (done) {
+                const Unit& u = units[size_t(r->header.unit)];
+                const size_t per_film = size_t(u.rect.width()) * size_t(u.rect.height()) * 3;
+                std::vector<const float*> data;
+                for (size_t k = 0; k < job.aovs.size(); ++k)
+                    data.push_back(r->pixels.data() + k * per_film);
+                add(size_t(r->header.unit), data, from_header(r->header));
+            }
             any = any || done != 0;
             return done != 0;
         });
         own_done = take_own([&](size_t unit, const PartResult& r) {
-            add(unit, unit_floats(r).data(), r.stats);
+            std::vector<const float*> data;
+            for (const AovFilm& f : r.films)
+                data.push_back(reinterpret_cast<const float*>(f.film.pixels.data()));
+            add(unit, data, r.stats);
             any = true;
         });
         if (any) {
-            busy += now_seconds() - t - (gather.writing - written);
+            busy += thread_seconds() - t - (gather.writing - written);
         } else {
             pause();
         }
