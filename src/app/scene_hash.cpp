@@ -6,32 +6,12 @@
 #include <fstream>
 #include <vector>
 
+#include "core/fnv1a.h"
+
 namespace raylane {
 namespace {
 
-/// FNV-1a, 64 bits (Fowler, Noll, Vo): offset basis and prime of the published parameters.
-struct Fnv1a {
-    uint64_t h = 14695981039346656037ull;
-    void bytes(const void* data, size_t n) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    }
-    /// A count first, so that [a][bc] and [ab][c] differ.
-    template <class T>
-    void array(const std::vector<T>& v) {
-        number(uint64_t(v.size()));
-        bytes(v.data(), v.size() * sizeof(T));
-    }
-    template <class T>
-    void number(T x) {
-        bytes(&x, sizeof x);
-    }
-    void text(const std::string& s) {
-        number(uint64_t(s.size()));
-        bytes(s.data(), s.size());
-    }
-    void vec(const vec3& v) { number(v.x), number(v.y), number(v.z); }
-};
+void hash_vec(Fnv1a& hash, const vec3& v) { hash.number(v.x), hash.number(v.y), hash.number(v.z); }
 
 /// The file's bytes; false when it cannot be read.
 bool hash_file(Fnv1a& hash, const std::string& path) {
@@ -67,13 +47,14 @@ std::string scene_hash(const Scene& scene) {
     // the materials a model's material library defines are in no file the scene names
     for (const Material& m : scene.materials) {
         hash.text(m.name);
-        hash.vec(m.c_d), hash.number(m.k_d), hash.number(m.k_a), hash.number(m.texture);
-        hash.number(m.texture_specular), hash.number(m.model), hash.vec(m.c_s);
+        hash_vec(hash, m.c_d), hash.number(m.k_d), hash.number(m.k_a), hash.number(m.texture);
+        hash.number(m.texture_specular), hash.number(m.model), hash_vec(hash, m.c_s);
         hash.number(m.k_s), hash.number(m.exponent), hash.number(m.alpha);
         hash.number(m.glossy_samples), hash.number(m.reflection), hash.number(m.k_a_after);
-        hash.number(m.fresnel), hash.number(m.refractive), hash.number(m.ior), hash.vec(m.filter);
+        hash.number(m.fresnel), hash.number(m.refractive), hash.number(m.ior),
+            hash_vec(hash, m.filter);
         hash.number(m.env_map), hash.number(m.normal_map), hash.number(m.normal_map_mode);
-        hash.vec(m.emission);
+        hash_vec(hash, m.emission);
     }
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash.h));

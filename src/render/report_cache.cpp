@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/fnv1a.h"
 #include "image/pfm.h"
 #include "io/model_path.h"
 #include "io/read_file.h"
@@ -75,20 +76,6 @@ Reference render_converged_reference(const Scene& scene, const Accel& accel,
 
 namespace {
 
-struct Fnv64 {
-    uint64_t h = 0xcbf29ce484222325ull;
-    void bytes(const void* data, size_t n) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-    }
-    void text(const std::string& s) {
-        const uint64_t n = s.size();
-        bytes(&n, sizeof n);
-        bytes(s.data(), s.size());
-    }
-    void number(int64_t v) { bytes(&v, sizeof v); }
-};
-
 /// Every string value in the JSON tree, depth-first.
 void collect_strings(const nlohmann::json& j, std::vector<std::string>& out) {
     if (j.is_string())
@@ -102,7 +89,7 @@ void collect_strings(const nlohmann::json& j, std::vector<std::string>& out) {
 std::string reference_cache_key(const std::string& scene_path, int width, int height,
                                 const ReferenceParams& params) {
     const std::string text = read_file(scene_path);
-    Fnv64 h;
+    Fnv1a h;
     h.text("raylane reference v1");
     h.text(text);
     // files the scene names: mesh, texture and map names are string values that resolve
