@@ -233,8 +233,7 @@ py::dict info(const SceneHandle& h) {
         wd["triangles_per_leaf"] = w.leaves ? double(w.prims) / double(w.leaves) : 0.0;
         wd["bytes"] = w.bytes;
         md["wide"] = wd;
-        md["wide_bytes_with_vertices"] =
-            w.bytes + vert_bytes + m.bvh.prim_ids.size() * sizeof(uint32_t);
+        md["wide_bytes_with_ids"] = w.bytes + m.bvh.prim_ids.size() * sizeof(uint32_t);
         meshes.append(md);
         total += b.bytes + vert_bytes + w.bytes;
     }

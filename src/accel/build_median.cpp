@@ -218,6 +218,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
     });
     accel.phases.boxes = clock.lap();
     accel.wide = collapse_to_wide(accel.bvh);
+    pack_leaf_triangles(accel.wide, accel.verts);
     accel.phases.collapse = clock.lap();
     return accel;
 }

@@ -174,6 +174,7 @@ MeshAccel build_mesh_accel_sah(const Mesh& mesh, const BuildParams& params) {
         accel.verts.push_back({mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]});
     }
     accel.wide = collapse_to_wide(accel.bvh);
+    pack_leaf_triangles(accel.wide, accel.verts);
     return accel;
 }
 

@@ -149,6 +149,26 @@ WideBvh collapse_to_wide(const Bvh& bvh) {
     return wide;
 }
 
+void pack_leaf_triangles(WideBvh& wide, std::span<const TriangleVerts> verts) {
+    wide.tris.clear();
+    if (wide.nodes.empty()) return;
+    wide.tris.resize(9 * verts.size() + wide_tris_pad);
+    float* out = wide.tris.data();
+    for (const WideNode& w : wide.nodes) {
+        for (int s = 0; s < w.children; ++s) {
+            if (!w.is_leaf(s)) continue;
+            const uint32_t first = w.child[s], n = w.count[s];
+            float* group = out + 9 * size_t(first);
+            for (uint32_t k = 0; k < n; ++k) {
+                const TriangleVerts& tv = verts[first + k];
+                const vec3 v[3] = {tv.a, tv.b, tv.c};
+                for (int c = 0; c < 9; ++c) group[c * n + k] = v[c / 3][c % 3];
+            }
+        }
+    }
+    std::fill(out + 9 * verts.size(), out + wide.tris.size(), 0.0f);
+}
+
 std::string check_wide_bvh(const WideBvh& wide, const Bvh& bvh) {
     if (bvh.nodes.empty()) return wide.nodes.empty() ? "" : "wide nodes for an empty tree";
     if (wide.nodes.empty()) return "no wide nodes for a non-empty tree";
@@ -209,7 +229,7 @@ std::string check_wide_bvh(const WideBvh& wide, const Bvh& bvh) {
 WideStats compute_wide_stats(const WideBvh& wide) {
     WideStats s;
     s.nodes = wide.nodes.size();
-    s.bytes = wide.nodes.size() * sizeof(WideNode);
+    s.bytes = wide.nodes.size() * sizeof(WideNode) + wide.tris.size() * sizeof(float);
     size_t slots = 0;
     for (const WideNode& w : wide.nodes) {
         slots += w.children;

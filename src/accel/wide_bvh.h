@@ -3,7 +3,9 @@
 // triangle vertices and one array of primitive ids.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 namespace raylane {
 
 struct Bvh;
+struct TriangleVerts;
 
 /// Children per wide node (N, the arity; style.md): 8 boxes make one 8-wide test.
 inline constexpr int wide_arity = 8;
@@ -44,9 +47,18 @@ struct WideRef {
     uint32_t count = 0;
 };
 
+/// Floats of zeros after the last leaf's triangles in WideBvh::tris, so that a vector load of
+/// up to 16 floats from any leaf's arrays stays inside.
+inline constexpr size_t wide_tris_pad = 16;
+
 /// A flattened wide tree; node 0 is the root. Empty for an empty binary tree.
 struct WideBvh {
     std::vector<WideNode, OverwriteAllocator<WideNode>> nodes;
+    /// The leaves' triangles for the watertight test, in SoA groups in leaf order: the leaf of
+    /// triangles f .. f + n - 1 is the 9 n floats from tris[9 f] on, the arrays a.x a.y a.z b.x
+    /// b.y b.z c.x c.y c.z of n floats each; wide_tris_pad zeros follow the last leaf. Filled by
+    /// pack_leaf_triangles; only the packet path reads it.
+    std::vector<float, OverwriteAllocator<float>> tris;
 };
 
 /// The wide tree of a binary BVH: each wide node adopts binary nodes, the interior one of
@@ -54,6 +66,10 @@ struct WideBvh {
 /// leaves are the binary tree's leaves, and the subtrees of at most wide_leaf_size primitives
 /// merged into one leaf each. A tree of one leaf gives one wide node with one child.
 WideBvh collapse_to_wide(const Bvh& bvh);
+
+/// Fills wide.tris from the vertices in leaf order (verts[k]: triangle k of the leaf order, the
+/// binary tree's MeshAccel::verts): each leaf's triangles as SoA groups.
+void pack_leaf_triangles(WideBvh& wide, std::span<const TriangleVerts> verts);
 
 /// Checks the wide tree against the binary tree it was collapsed from: the wide leaves tile the
 /// leaf order (every primitive in exactly one leaf), each one binary leaf or consecutive binary
@@ -67,7 +83,7 @@ std::string check_wide_bvh(const WideBvh& wide, const Bvh& bvh);
 struct WideStats {
     size_t nodes = 0, leaves = 0, prims = 0;
     double mean_children = 0.0;  ///< used slots per wide node
-    size_t bytes = 0;            ///< the wide nodes alone (the ids and vertices are shared)
+    size_t bytes = 0;            ///< the wide nodes and the leaves' triangles (ids are shared)
 };
 WideStats compute_wide_stats(const WideBvh& wide);
 

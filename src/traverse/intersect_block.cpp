@@ -11,6 +11,7 @@
 
 #include "traverse/hit_update_packet.h"
 #include "traverse/intersect_packet.h"
+#include "traverse/leaf_packet.h"
 #include "traverse/slab_packet.h"
 #include "traverse/triangle_packet.h"
 
@@ -448,19 +449,10 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
                     for (int p = f + qf; p <= f + ql; ++p) {
                         const vmask<W> m = test_slot(p, node, s);
                         if (none(m)) continue;
-                        for (uint32_t j = node.child[s]; j < node.child[s] + node.count[s]; ++j) {
-                            const TriangleVerts& tv = mesh.verts[j];
-                            vfloat<W> t(infinity), u(0.0f), v(0.0f);
-                            const vmask<W> h = intersect_triangle(
-                                wr[p], tv.a, tv.b, tv.c, rays[p].t_min, limit[p], t, u, v, m);
-                            if (any(h)) {
-                                const uint32_t prim = mesh.bvh.prim_ids[j];
-                                record(hits[p], better(t, object_index, prim, hits[p], h), t,
-                                       object_index, prim, u, v);
-                                limit[p] = t_limit(rays[p], hits[p]);
-                                found = true;
-                            }
-                        }
+                        const LeafTris tris = leaf_tris(mesh, {node.child[s], node.count[s]});
+                        if (any(leaf_closest(tris, object_index, wr[p], rays[p], m, limit[p],
+                                             hits[p])))
+                            found = true;
                     }
                     if (found) lower_t_max();
                     found = false;
@@ -534,17 +526,11 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
                 [&](const WideNode& node, int s, int qf, int ql) {
                     bool done = true;
                     for (int p = f + qf; p <= f + ql; ++p) {
-                        // the open lanes that touch the leaf, less those each triangle occludes
-                        vmask<W> m = test_slot(p, node, s);
-                        const uint32_t end = node.child[s] + node.count[s];
-                        for (uint32_t j = node.child[s]; j < end && any(m); ++j) {
-                            const TriangleVerts& tv = mesh.verts[j];
-                            vfloat<W> t(infinity), u(0.0f), v(0.0f);
-                            const vmask<W> h = intersect_triangle(
-                                wr[p], tv.a, tv.b, tv.c, rays[p].t_min, rays[p].t_max, t, u, v, m);
-                            occluded[p] = mask_or(occluded[p], h);
-                            m = mask_andnot(m, h);
-                        }
+                        // the open lanes that touch the leaf
+                        const vmask<W> m = test_slot(p, node, s);
+                        if (none(m)) continue;
+                        const LeafTris tris = leaf_tris(mesh, {node.child[s], node.count[s]});
+                        occluded[p] = mask_or(occluded[p], leaf_any(tris, wr[p], rays[p], m));
                         open[p] = mask_andnot(active[p], occluded[p]);
                     }
                     for (int p = f; p <= l && done; ++p) done = none(open[p]);

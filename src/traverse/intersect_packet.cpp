@@ -11,6 +11,7 @@
 #include "traverse/cylinder_packet.h"
 #include "traverse/hit_update_packet.h"
 #include "traverse/intersect_scalar.h"
+#include "traverse/leaf_packet.h"
 #include "traverse/plane_packet.h"
 #include "traverse/slab_packet.h"
 #include "traverse/sphere_packet.h"
@@ -123,19 +124,7 @@ void intersect_mesh_closest(const MeshAccel& mesh, uint32_t object, const RayPac
     vmask<W> m = active;
     for (;;) {
         if (ref.count > 0) {
-            // leaf
-            for (uint32_t k = ref.child; k < ref.child + ref.count; ++k) {
-                const TriangleVerts& tv = mesh.verts[k];
-                vfloat<W> t(infinity), u(0.0f), v(0.0f);
-                const vmask<W> h =
-                    intersect_triangle(wr, tv.a, tv.b, tv.c, rays.t_min, limit, t, u, v, m);
-                if (any(h)) {
-                    const uint32_t prim = mesh.bvh.prim_ids[k];
-                    const vmask<W> win = better(t, object, prim, hit, h);
-                    record(hit, win, t, object, prim, u, v);
-                    limit = t_limit(rays, hit);
-                }
-            }
+            leaf_closest(leaf_tris(mesh, ref), object, wr, rays, m, limit, hit);
         } else {
             // children: the nearest goes on, the others pushed, farthest first
             const WideNode& node = nodes[ref.child];
@@ -181,15 +170,7 @@ vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vma
     vmask<W> m = active;
     for (;;) {
         if (ref.count > 0) {
-            // leaf
-            for (uint32_t k = ref.child; k < ref.child + ref.count; ++k) {
-                const vmask<W> lanes = mask_andnot(m, found);
-                if (none(lanes)) break;
-                const TriangleVerts& tv = mesh.verts[k];
-                vfloat<W> t(infinity), u(0.0f), v(0.0f);
-                found = mask_or(found, intersect_triangle(wr, tv.a, tv.b, tv.c, rays.t_min,
-                                                          rays.t_max, t, u, v, lanes));
-            }
+            found = mask_or(found, leaf_any(leaf_tris(mesh, ref), wr, rays, mask_andnot(m, found)));
             if (none(mask_andnot(active, found))) return found;
         } else {
             // children: the nearest goes on, the others pushed, farthest first

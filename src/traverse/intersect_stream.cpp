@@ -11,6 +11,7 @@
 
 #include "traverse/hit_update_packet.h"
 #include "traverse/intersect_packet.h"
+#include "traverse/leaf_packet.h"
 #include "traverse/slab_packet.h"
 #include "traverse/triangle_packet.h"
 
@@ -359,20 +360,7 @@ void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, WideRef leaf
         gather_rays<W>(s, idx, lanes, r, h, open);
         const WatertightPacket<W> wr = make_watertight_ray(r, lanes);
         vfloat<W> limit = t_limit(r, h);
-        vmask<W> won = mask_and(lanes, mask_not(lanes));
-        for (uint32_t k = leaf.child; k < leaf.child + leaf.count; ++k) {
-            const TriangleVerts& tv = mesh.verts[k];
-            vfloat<W> t(infinity), u(0.0f), v(0.0f);
-            const vmask<W> hit =
-                intersect_triangle(wr, tv.a, tv.b, tv.c, r.t_min, limit, t, u, v, lanes);
-            if (any(hit)) {
-                const uint32_t prim = mesh.bvh.prim_ids[k];
-                const vmask<W> win = better(t, object, prim, h, hit);
-                record(h, win, t, object, prim, u, v);
-                limit = t_limit(r, h);
-                won = mask_or(won, win);
-            }
-        }
+        const vmask<W> won = leaf_closest(leaf_tris(mesh, leaf), object, wr, r, lanes, limit, h);
         if (any(won)) scatter_hits(s, idx, won, r, h);
     }
 }
@@ -423,15 +411,7 @@ void stream_leaf_any(Stream& s, const MeshAccel& mesh, WideRef leaf, const int32
         gather_rays<W>(s, idx, lanes, r, h, open);
         if (none(open)) continue;
         const WatertightPacket<W> wr = make_watertight_ray(r, open);
-        vmask<W> found = mask_and(open, mask_not(open));
-        for (uint32_t k = leaf.child; k < leaf.child + leaf.count; ++k) {
-            const vmask<W> m = mask_andnot(open, found);
-            if (none(m)) break;
-            const TriangleVerts& tv = mesh.verts[k];
-            vfloat<W> t(infinity), u(0.0f), v(0.0f);
-            found = mask_or(found,
-                            intersect_triangle(wr, tv.a, tv.b, tv.c, r.t_min, r.t_max, t, u, v, m));
-        }
+        const vmask<W> found = leaf_any(leaf_tris(mesh, leaf), wr, r, open);
         if (any(found)) mark_occluded<W>(s, idx, found);
     }
 }

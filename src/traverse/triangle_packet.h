@@ -92,20 +92,55 @@ inline WatertightPacket<W> make_watertight_ray(const RayPacket<W>& rays, vmask<W
     return wr;
 }
 
-/// The lanes of `active` that hit triangle (a, b, c) at t in (t_min, t_max); for those lanes t,
-/// u, v are written (others keep their values). Same steps as the scalar test.
+/// Component k (0, 1 or 2) of a vertex: one triangle's for every lane (vec3), or each lane's
+/// own triangle (Vec3<W>).
+inline float component(vec3 p, int k) { return p[k]; }
 template <int W>
-[[gnu::always_inline]] inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, vec3 a,
-                                                          vec3 b, vec3 c, const vfloat<W>& t_min,
-                                                          const vfloat<W>& t_max, vfloat<W>& t,
-                                                          vfloat<W>& u, vfloat<W>& v,
-                                                          vmask<W> active) {
+inline vfloat<W> component(const Vec3<W>& p, int k) {
+    return k == 0 ? p.x : (k == 1 ? p.y : p.z);
+}
+
+/// Lane i's vertex.
+inline vec3 lane_vertex(vec3 p, int) { return p; }
+template <int W>
+inline vec3 lane_vertex(const Vec3<W>& p, int i) {
+    return get_vec3(p, i);
+}
+
+/// `lanes` less those whose triangle has zero area (is_zero_area_triangle): all or none for one
+/// triangle, lane by lane for a triangle per lane.
+template <int W>
+inline vmask<W> drop_zero_area(vmask<W> lanes, vec3 a, vec3 b, vec3 c) {
+    return is_zero_area_triangle(a, b, c) ? mask_and(lanes, mask_not(lanes)) : lanes;
+}
+template <int W>
+inline vmask<W> drop_zero_area(vmask<W> lanes, const Vec3<W>& a, const Vec3<W>& b,
+                               const Vec3<W>& c) {
+    uint32_t kept = bits(lanes);
+    for_each_active(lanes, [&](int i) {
+        if (is_zero_area_triangle(get_vec3(a, i), get_vec3(b, i), get_vec3(c, i)))
+            kept &= ~(1u << i);
+    });
+    return mask_from_bits<W>(kept);
+}
+
+/// The lanes of `active` that hit triangle (a, b, c) at t in (t_min, t_max); for those lanes t,
+/// u, v are written (others keep their values). Same steps as the scalar test. The vertices
+/// are one triangle's for all lanes (V = vec3: W rays against a triangle) or a triangle per lane
+/// (V = Vec3<W>: one ray, broadcast into wr, against W triangles of a leaf).
+template <int W, class V>
+[[gnu::always_inline]] inline vmask<W> intersect_triangle(
+    const WatertightPacket<W>& wr, const V& a, const V& b, const V& c, const vfloat<W>& t_min,
+    const vfloat<W>& t_max, vfloat<W>& t, vfloat<W>& u, vfloat<W>& v, vmask<W> active) {
     // translate (vertex components picked by the permutation, then the permuted origin)
     vfloat<W> akx, aky, akz, bkx, bky, bkz, ckx, cky, ckz;
     if (wr.uniform) {
-        akx = vfloat<W>(a[wr.kx]), aky = vfloat<W>(a[wr.ky]), akz = vfloat<W>(a[wr.kz]);
-        bkx = vfloat<W>(b[wr.kx]), bky = vfloat<W>(b[wr.ky]), bkz = vfloat<W>(b[wr.kz]);
-        ckx = vfloat<W>(c[wr.kx]), cky = vfloat<W>(c[wr.ky]), ckz = vfloat<W>(c[wr.kz]);
+        akx = vfloat<W>(component(a, wr.kx)), aky = vfloat<W>(component(a, wr.ky)),
+        akz = vfloat<W>(component(a, wr.kz));
+        bkx = vfloat<W>(component(b, wr.kx)), bky = vfloat<W>(component(b, wr.ky)),
+        bkz = vfloat<W>(component(b, wr.kz));
+        ckx = vfloat<W>(component(c, wr.kx)), cky = vfloat<W>(component(c, wr.ky)),
+        ckz = vfloat<W>(component(c, wr.kz));
     } else {
         akx = pick<W>(wr.kx0, wr.kx1, a), aky = pick<W>(wr.ky0, wr.ky1, a),
         akz = pick<W>(wr.kz0, wr.kz1, a);
@@ -150,8 +185,9 @@ template <int W>
     vmask<W> hit = mask_and(mask_and(inside, ne(det, zero)), active);
     if (none(hit)) return hit;
 
-    // degenerate: a property of the triangle alone, tested once for all lanes
-    if (is_zero_area_triangle(a, b, c)) return mask_and(hit, mask_not(hit));
+    // degenerate: a property of the triangle alone, tested once per triangle
+    hit = drop_zero_area<W>(hit, a, b, c);
+    if (none(hit)) return hit;
 
     // distance
     const vfloat<W> az = wr.sz * Akz;
@@ -175,7 +211,7 @@ template <int W>
             set(t_plane, i,
                 plane_distance_in_double(vec3(get(wr.org.x, i), get(wr.org.y, i), get(wr.org.z, i)),
                                          vec3(get(wr.dir.x, i), get(wr.dir.y, i), get(wr.dir.z, i)),
-                                         a, b, c));
+                                         lane_vertex(a, i), lane_vertex(b, i), lane_vertex(c, i)));
         });
     }
     const vmask<W> in_scaled = mask_and(t_signed > t_min * abs_det, t_signed < t_max * abs_det);

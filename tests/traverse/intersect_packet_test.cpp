@@ -613,6 +613,76 @@ TYPED_TEST(IntersectPacket, BlocksAndStreamsMatchScalarOnAdversarialRays) {
     EXPECT_EQ(any_stream_mismatches<W>(l, rays, want.blocked), 0u);
 }
 
+/// Packets of one active lane each (the lane moving through 0 .. W - 1), alone and in blocks:
+/// leaves test such a packet by ray (leaf_packet.h, leaf_lanes triangles at once), and the
+/// answers are the scalar path's, on the dragon's and the bunny's camera, shadow and bounce rays.
+TYPED_TEST(IntersectPacket, LoneLanesMatchScalar) {
+    constexpr int W = TypeParam::value;
+    constexpr int per_block = max_block_rays / W;
+    for (const char* name : {"dragon", "bunny"}) {
+        const std::shared_ptr<Loaded> l = load(name);
+        if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
+        const RaySets& s = ray_sets(name, BvhBuild::median);
+        // ray k alone in lane k % W; the other lanes inactive (benign: t_max < t_min)
+        auto lone = [](const Ray& ray, size_t k, vmask<W>& active) {
+            RayPacket<W> p;
+            Ray off;
+            off.t_max = -1.0f;
+            for (int i = 0; i < W; ++i) set_ray(p, i, i == int(k % W) ? ray : off);
+            active = mask_from_bits<W>(1u << (k % W));
+            return p;
+        };
+        auto closest = [&](const std::vector<Ray>& rays, const std::vector<Hit>& want) {
+            std::atomic<size_t> bad{0};
+            const size_t n = std::min<size_t>(rays.size(), 200000);
+            tbb::parallel_for(size_t(0), (n + per_block - 1) / per_block, [&](size_t b) {
+                RayPacket<W> p[per_block];
+                vmask<W> active[per_block] = {};
+                HitPacket<W> got[per_block];
+                int count = 0;
+                for (size_t k = b * per_block; k < std::min(n, (b + 1) * per_block); ++k)
+                    p[count] = lone(rays[k], k, active[count]), ++count;
+                intersect_closest_block(l->scene, l->accel, p, active, got, count);
+                for (int c = 0; c < count; ++c) {
+                    const size_t k = b * per_block + size_t(c);
+                    const HitPacket<W> alone =
+                        intersect_closest(l->scene, l->accel, p[c], active[c]);
+                    for (const HitPacket<W>& h : {got[c], alone}) {
+                        const Hit g = get_hit(h, int(k % W)), w = want[k];
+                        if (g.object != w.object || g.prim != w.prim || (w.hit() && g.t != w.t) ||
+                            (w.hit() && (g.uv.x != w.uv.x || g.uv.y != w.uv.y)))
+                            ++bad;
+                    }
+                }
+            });
+            return bad.load();
+        };
+        auto any_hit = [&](const std::vector<Ray>& rays, const std::vector<uint8_t>& want) {
+            std::atomic<size_t> bad{0};
+            const size_t n = std::min<size_t>(rays.size(), 200000);
+            tbb::parallel_for(size_t(0), (n + per_block - 1) / per_block, [&](size_t b) {
+                RayPacket<W> p[per_block];
+                vmask<W> active[per_block] = {}, got[per_block] = {};
+                int count = 0;
+                for (size_t k = b * per_block; k < std::min(n, (b + 1) * per_block); ++k)
+                    p[count] = lone(rays[k], k, active[count]), ++count;
+                intersect_any_block(l->scene, l->accel, p, active, got, count);
+                for (int c = 0; c < count; ++c) {
+                    const size_t k = b * per_block + size_t(c);
+                    const uint32_t lane = 1u << (k % W);
+                    const uint32_t alone = bits(intersect_any(l->scene, l->accel, p[c], active[c]));
+                    if (((bits(got[c]) & lane) != 0) != (want[k] != 0)) ++bad;
+                    if (((alone & lane) != 0) != (want[k] != 0)) ++bad;
+                }
+            });
+            return bad.load();
+        };
+        EXPECT_EQ(closest(s.camera, s.camera_hits), 0u) << name << " camera rays";
+        EXPECT_EQ(any_hit(s.shadow, s.shadow_blocked), 0u) << name << " shadow rays";
+        EXPECT_EQ(closest(s.bounce, s.bounce_hits), 0u) << name << " bounce rays";
+    }
+}
+
 /// The camera's rays reversed, searching behind their origin (t in (-1e4, 0)): block culling
 /// must not assume t >= 0.
 TYPED_TEST(IntersectPacket, BlocksHandleNegativeIntervals) {
