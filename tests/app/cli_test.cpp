@@ -192,7 +192,8 @@ TEST(Cli, InfoPrintsBothTreesOfEveryMesh) {
         EXPECT_NE(line.find(" nodes, "), std::string::npos) << line;
         EXPECT_NE(line.find(" children per node, "), std::string::npos) << line;
         EXPECT_NE(line.find(" triangles per leaf"), std::string::npos) << line;
-        EXPECT_NE(r.out.find("bytes per triangle (wide nodes, leaf triangles, ids)"), std::string::npos);
+        EXPECT_NE(r.out.find("bytes per triangle (wide nodes, leaf triangles, ids)"),
+                  std::string::npos);
     }
 }
 
