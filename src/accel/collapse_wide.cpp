@@ -7,6 +7,7 @@
 
 #include "accel/bvh.h"
 #include "accel/wide_bvh.h"
+#include "core/triangle_area.h"
 
 namespace raylane {
 namespace {
@@ -161,7 +162,9 @@ void pack_leaf_triangles(WideBvh& wide, std::span<const TriangleVerts> verts) {
             float* group = out + 9 * size_t(first);
             for (uint32_t k = 0; k < n; ++k) {
                 const TriangleVerts& tv = verts[first + k];
-                const vec3 v[3] = {tv.a, tv.b, tv.c};
+                vec3 v[3] = {tv.a, tv.b, tv.c};
+                if (is_zero_area_triangle(tv.a, tv.b, tv.c))
+                    v[0] = v[1] = v[2] = vec3(std::numeric_limits<float>::quiet_NaN());
                 for (int c = 0; c < 9; ++c) group[c * n + k] = v[c / 3][c % 3];
             }
         }

@@ -56,8 +56,9 @@ struct WideBvh {
     std::vector<WideNode, OverwriteAllocator<WideNode>> nodes;
     /// The leaves' triangles for the watertight test, in SoA groups in leaf order: the leaf of
     /// triangles f .. f + n - 1 is the 9 n floats from tris[9 f] on, the arrays a.x a.y a.z b.x
-    /// b.y b.z c.x c.y c.z of n floats each; wide_tris_pad zeros follow the last leaf. Filled by
-    /// pack_leaf_triangles; only the packet path reads it.
+    /// b.y b.z c.x c.y c.z of n floats each; wide_tris_pad zeros follow the last leaf. A
+    /// zero-area triangle's coordinates are NaN, so the packet path needs no zero-area test.
+    /// Filled by pack_leaf_triangles; only the packet path reads it.
     std::vector<float, OverwriteAllocator<float>> tris;
 };
 

@@ -21,7 +21,9 @@ namespace raylane {
 inline constexpr int leaf_lanes = native_width < 8 ? native_width : 8;
 
 /// A leaf's triangles: `n` of them from leaf order `first` on, their nine coordinate arrays of n
-/// floats each from `tris` (a.x, a.y, a.z, b.x, ... c.z), their primitive ids from `ids`.
+/// floats each from `tris` (a.x, a.y, a.z, b.x, ... c.z), their primitive ids from `ids`. A
+/// zero-area triangle's coordinates are NaN (pack_leaf_triangles), so the tests here skip the
+/// zero-area test that the scalar path makes: either way the triangle is never hit.
 struct LeafTris {
     const float* tris;
     const uint32_t* ids;
@@ -92,9 +94,9 @@ vmask<W> leaf_closest_by_ray(const LeafTris& leaf, uint32_t object, const Watert
             vfloat<G> t(infinity), u(0.0f), v(0.0f);
             const vmask<G> in_leaf =
                 prefix_mask<G>(static_cast<int>(std::min<uint32_t>(G, leaf.n - k)));
-            const vmask<G> h =
-                intersect_triangle(one, leaf_vertices<G>(leaf, 0, k), leaf_vertices<G>(leaf, 1, k),
-                                   leaf_vertices<G>(leaf, 2, k), t_min, t_max, t, u, v, in_leaf);
+            const vmask<G> h = intersect_triangle(
+                one, leaf_vertices<G>(leaf, 0, k), leaf_vertices<G>(leaf, 1, k),
+                leaf_vertices<G>(leaf, 2, k), t_min, t_max, t, u, v, in_leaf, false);
             if (none(h)) continue;
             // the group's best by (t, primitive), then against the lane's hit
             const float t_best = hmin(t, h);
@@ -138,7 +140,7 @@ template <int W>
         vfloat<W> t(infinity), u(0.0f), v(0.0f);
         const vmask<W> h =
             intersect_triangle(wr, leaf_vertex(leaf, 0, k), leaf_vertex(leaf, 1, k),
-                               leaf_vertex(leaf, 2, k), rays.t_min, limit, t, u, v, m);
+                               leaf_vertex(leaf, 2, k), rays.t_min, limit, t, u, v, m, false);
         if (any(h)) {
             const vmask<W> win = better(t, object, leaf.ids[k], hit, h);
             record(hit, win, t, object, leaf.ids[k], u, v);
@@ -165,7 +167,7 @@ vmask<W> leaf_any_by_ray(const LeafTris& leaf, const WatertightPacket<W>& wr,
                 prefix_mask<G>(static_cast<int>(std::min<uint32_t>(G, leaf.n - k)));
             if (any(intersect_triangle(one, leaf_vertices<G>(leaf, 0, k),
                                        leaf_vertices<G>(leaf, 1, k), leaf_vertices<G>(leaf, 2, k),
-                                       t_min, t_max, t, u, v, in_leaf))) {
+                                       t_min, t_max, t, u, v, in_leaf, false))) {
                 found |= 1u << i;
                 break;
             }
@@ -186,7 +188,7 @@ template <int W>
         vfloat<W> t(infinity), u(0.0f), v(0.0f);
         found = mask_or(found, intersect_triangle(wr, leaf_vertex(leaf, 0, k),
                                                   leaf_vertex(leaf, 1, k), leaf_vertex(leaf, 2, k),
-                                                  rays.t_min, rays.t_max, t, u, v, lanes));
+                                                  rays.t_min, rays.t_max, t, u, v, lanes, false));
     }
     return found;
 }

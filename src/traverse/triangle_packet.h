@@ -127,11 +127,16 @@ inline vmask<W> drop_zero_area(vmask<W> lanes, const Vec3<W>& a, const Vec3<W>& 
 /// The lanes of `active` that hit triangle (a, b, c) at t in (t_min, t_max); for those lanes t,
 /// u, v are written (others keep their values). Same steps as the scalar test. The vertices
 /// are one triangle's for all lanes (V = vec3: W rays against a triangle) or a triangle per lane
-/// (V = Vec3<W>: one ray, broadcast into wr, against W triangles of a leaf).
+/// (V = Vec3<W>: one ray, broadcast into wr, against W triangles of a leaf). With `test_area`
+/// false the caller guarantees that no triangle has zero area, or that such a triangle's
+/// vertices are NaN (a wide leaf's: WideBvh::tris), which no ray hits either.
 template <int W, class V>
-[[gnu::always_inline]] inline vmask<W> intersect_triangle(
-    const WatertightPacket<W>& wr, const V& a, const V& b, const V& c, const vfloat<W>& t_min,
-    const vfloat<W>& t_max, vfloat<W>& t, vfloat<W>& u, vfloat<W>& v, vmask<W> active) {
+[[gnu::always_inline]] inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, const V& a,
+                                                          const V& b, const V& c,
+                                                          const vfloat<W>& t_min,
+                                                          const vfloat<W>& t_max, vfloat<W>& t,
+                                                          vfloat<W>& u, vfloat<W>& v,
+                                                          vmask<W> active, bool test_area = true) {
     // translate (vertex components picked by the permutation, then the permuted origin)
     vfloat<W> akx, aky, akz, bkx, bky, bkz, ckx, cky, ckz;
     if (wr.uniform) {
@@ -186,8 +191,10 @@ template <int W, class V>
     if (none(hit)) return hit;
 
     // degenerate: a property of the triangle alone, tested once per triangle
-    hit = drop_zero_area<W>(hit, a, b, c);
-    if (none(hit)) return hit;
+    if (test_area) {
+        hit = drop_zero_area<W>(hit, a, b, c);
+        if (none(hit)) return hit;
+    }
 
     // distance
     const vfloat<W> az = wr.sz * Akz;
