@@ -189,7 +189,7 @@ void print_phases(const bench::Measured& m, std::ostream& out) {
                             "median splits",
                             "vertices in leaf order",
                             "node boxes",
-                            "wide tree collapsed"};
+                            "wide tree collapsed, leaves packed"};
     const char* orders[] = {"n", "n", "n log n", "n", "n", "n"};
     out << "\nWhere the repeated build's time goes (each phase's mean per build, median of the "
            "repetitions):\n\n| phase | grows as | 100k | 400k | 1.6M | 100k → 400k | 400k → 1.6M "

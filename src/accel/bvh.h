@@ -105,7 +105,7 @@ struct BuildPhases {
     double splits = 0.0;     ///< the median splits, level by level (O(n log n)), temporaries freed
     double vertices = 0.0;   ///< the vertices gathered in leaf order (O(n))
     double boxes = 0.0;      ///< the node bounds, bottom up (O(n))
-    double collapse = 0.0;   ///< the wide tree collapsed from the binary one (O(n))
+    double collapse = 0.0;   ///< the wide tree collapsed from the binary one, leaves packed (O(n))
 };
 
 /// Adds b's phases to a's (a total over several builds).
