@@ -165,8 +165,8 @@ TEST(Cli, InfoPrintsTheMeshBuildsPhasesForTheMedianSplitOnly) {
     const size_t line = median.out.find("mesh builds: centroids ");
     ASSERT_NE(line, std::string::npos) << median.out;
     const std::string phases = median.out.substr(line, median.out.find('\n', line) - line);
-    for (const char* key :
-         {", sorts ", ", splits ", ", vertices ", ", boxes ", "; wide trees collapsed and leaves packed in "})
+    for (const char* key : {", sorts ", ", splits ", ", vertices ", ", boxes ",
+                            "; wide trees collapsed and leaves packed in "})
         EXPECT_NE(phases.find(key), std::string::npos) << key << "\n" << phases;
     const CliRun sah = run("info --bvh sah " + scene);
     EXPECT_EQ(sah.code, 0) << sah.err;
