@@ -1,6 +1,6 @@
 // accel: the packet path's wide tree, collapsed from the binary BVH that the scalar path
 // traverses (bvh.h). Same leaves in the same leaf order, so both trees index one array of
-// triangle vertices and one array of primitive ids.
+// primitive ids; the wide tree keeps its leaves' triangles in SoA (WideBvh::tris).
 #pragma once
 
 #include <cstddef>
@@ -27,9 +27,9 @@ inline constexpr uint32_t wide_leaf_size = 8;
 /// (lo[axis][slot], hi[axis][slot]: one vector load per plane tests every child at once).
 /// Slots 0 .. children - 1 are used, in the binary tree's depth-first order; an unused slot's
 /// box is empty (lo = +inf, hi = -inf), so no ray enters it. A leaf slot (count > 0) holds the
-/// triangles `child` .. child + count - 1 in leaf order (indices into Bvh::prim_ids and
-/// MeshAccel::verts); an interior slot (count = 0) holds the index of its wide node, which
-/// comes after its parent (depth-first, the first interior child right after it).
+/// triangles `child` .. child + count - 1 in leaf order (indices into Bvh::prim_ids; their
+/// coordinates from WideBvh::tris[9 child] on); an interior slot (count = 0) holds the index of its
+/// wide node, which comes after its parent (depth-first, the first interior child right after it).
 struct alignas(64) WideNode {
     float lo[3][wide_arity];
     float hi[3][wide_arity];

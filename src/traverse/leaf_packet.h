@@ -20,19 +20,19 @@ namespace raylane {
 /// Triangles tested at once by one ray: 8 where the build has 8-wide vectors, else 4.
 inline constexpr int leaf_lanes = native_width < 8 ? native_width : 8;
 
-/// A leaf's triangles: `n` of them from leaf order `first` on, their nine coordinate arrays of n
-/// floats each from `tris` (a.x, a.y, a.z, b.x, ... c.z), their primitive ids from `ids`. A
+/// A leaf's n triangles: their nine coordinate arrays of n floats each from `tris` (a.x, a.y,
+/// a.z, b.x, ... c.z), their primitive ids from `ids`. A
 /// zero-area triangle's coordinates are NaN (pack_leaf_triangles), so the tests here skip the
 /// zero-area test that the scalar path makes: either way the triangle is never hit.
 struct LeafTris {
     const float* tris;
     const uint32_t* ids;
-    uint32_t first, n;
+    uint32_t n;
 };
 
 inline LeafTris leaf_tris(const MeshAccel& mesh, WideRef leaf) {
     return {mesh.wide.tris.data() + 9 * size_t(leaf.child), mesh.bvh.prim_ids.data() + leaf.child,
-            leaf.child, leaf.count};
+            leaf.count};
 }
 
 /// Vertex `corner` (0, 1, 2: a, b, c) of triangle k, the same for every lane.
