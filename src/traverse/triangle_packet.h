@@ -1,8 +1,10 @@
-// traverse: watertight ray/triangle intersection, W rays against one triangle (the packet
-// path). Mirrors triangle_scalar.h step by step; the float expressions are the same, so a
+// traverse: watertight ray/triangle intersection, W rays against one triangle or one ray against
+// W triangles (the packet path). Mirrors triangle_scalar.h step by step; the float expressions are the same, so a
 // lane's result is bit-identical to the scalar test of the same ray.
 // Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1), 2013.
 #pragma once
+
+#include <type_traits>
 
 #include "core/ray_packet.h"
 #include "traverse/triangle_scalar.h"
@@ -107,29 +109,13 @@ inline vec3 lane_vertex(const Vec3<W>& p, int i) {
     return get_vec3(p, i);
 }
 
-/// `lanes` less those whose triangle has zero area (is_zero_area_triangle): all or none for one
-/// triangle, lane by lane for a triangle per lane.
-template <int W>
-inline vmask<W> drop_zero_area(vmask<W> lanes, vec3 a, vec3 b, vec3 c) {
-    return is_zero_area_triangle(a, b, c) ? mask_and(lanes, mask_not(lanes)) : lanes;
-}
-template <int W>
-inline vmask<W> drop_zero_area(vmask<W> lanes, const Vec3<W>& a, const Vec3<W>& b,
-                               const Vec3<W>& c) {
-    uint32_t kept = bits(lanes);
-    for_each_active(lanes, [&](int i) {
-        if (is_zero_area_triangle(get_vec3(a, i), get_vec3(b, i), get_vec3(c, i)))
-            kept &= ~(1u << i);
-    });
-    return mask_from_bits<W>(kept);
-}
-
 /// The lanes of `active` that hit triangle (a, b, c) at t in (t_min, t_max); for those lanes t,
 /// u, v are written (others keep their values). Same steps as the scalar test. The vertices
 /// are one triangle's for all lanes (V = vec3: W rays against a triangle) or a triangle per lane
 /// (V = Vec3<W>: one ray, broadcast into wr, against W triangles of a leaf). With `test_area`
-/// false the caller guarantees that no triangle has zero area, or that such a triangle's
-/// vertices are NaN (a wide leaf's: WideBvh::tris), which no ray hits either.
+/// false, and always for a triangle per lane, the caller guarantees that no triangle has zero
+/// area or that such a triangle's vertices are NaN (a wide leaf's: WideBvh::tris), which no ray
+/// hits either.
 template <int W, class V>
 [[gnu::always_inline]] inline vmask<W> intersect_triangle(const WatertightPacket<W>& wr, const V& a,
                                                           const V& b, const V& c,
@@ -190,10 +176,9 @@ template <int W, class V>
     vmask<W> hit = mask_and(mask_and(inside, ne(det, zero)), active);
     if (none(hit)) return hit;
 
-    // degenerate: a property of the triangle alone, tested once per triangle
-    if (test_area) {
-        hit = drop_zero_area<W>(hit, a, b, c);
-        if (none(hit)) return hit;
+    // degenerate: a property of the triangle alone, tested once for all lanes
+    if constexpr (std::is_same_v<V, vec3>) {
+        if (test_area && is_zero_area_triangle(a, b, c)) return mask_and(hit, mask_not(hit));
     }
 
     // distance
