@@ -1,7 +1,7 @@
 // traverse: watertight ray/triangle intersection, W rays against one triangle or one ray against
 // W triangles (the packet path). Mirrors triangle_scalar.h step by step; the float expressions are
-// the same, so a lane's result is bit-identical to the scalar test of the same ray. Woop, Benthin,
-// Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1), 2013.
+// the same, so a lane's result is bit-identical to the scalar test of the same ray.
+// Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1), 2013.
 #pragma once
 
 #include <type_traits>
