@@ -60,6 +60,8 @@ def camera_rays(mesh, count):
 
 
 def random_rays(mesh, count, seed=1):
+    """Rays from a sphere around the mesh's bounds towards random points inside them: most hit,
+    some miss, from every direction."""
     rng = np.random.default_rng(seed)
     v = mesh.vertices
     lo, hi = v.min(axis=0), v.max(axis=0)

@@ -1,8 +1,9 @@
 """Shared set-up of the Python module's tests: where the checkout, the raylane binary and the
 models are (ctest sets RAYLANE_SOURCE_DIR, RAYLANE_EXE and RAYLANE_MODEL_PATH), a PFM reader,
-and random rays at a mesh."""
+and rays at a mesh (the random ones are the benchmark's, bench/python/ray_queries.py)."""
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -10,6 +11,9 @@ import pytest
 SOURCE_DIR = os.environ.get(
     "RAYLANE_SOURCE_DIR", os.path.normpath(os.path.join(os.path.dirname(__file__), "..", "..")))
 RAYLANE_EXE = os.environ.get("RAYLANE_EXE", "")
+
+sys.path.insert(0, os.path.join(SOURCE_DIR, "bench", "python"))
+from ray_queries import random_rays  # noqa: E402,F401 (the tests import it from here)
 
 
 def scene_path(name):
@@ -43,19 +47,6 @@ def read_pfm(path):
         data = np.frombuffer(f.read(), dtype="<f4")
     assert data.size == width * height * 3
     return data.reshape(height, width, 3)[::-1]
-
-
-def random_rays(mesh, count, seed):
-    """Rays from a sphere around the mesh's bounds towards random points inside them: most hit,
-    some miss, from every direction."""
-    rng = np.random.default_rng(seed)
-    v = mesh.vertices
-    lo, hi = v.min(axis=0), v.max(axis=0)
-    centre, radius = (lo + hi) / 2, np.linalg.norm(hi - lo)
-    d = rng.normal(size=(count, 3))
-    origins = centre + radius * d / np.linalg.norm(d, axis=1, keepdims=True)
-    targets = lo + rng.random((count, 3)) * (hi - lo)
-    return origins.astype(np.float32), (targets - origins).astype(np.float32)
 
 
 def camera_rays(mesh, width, height):

@@ -623,28 +623,35 @@ TYPED_TEST(IntersectPacket, LoneLanesMatchScalar) {
         const std::shared_ptr<Loaded> l = load(name);
         if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
         const RaySets& s = ray_sets(name, BvhBuild::median);
-        // ray k alone in lane k % W; the other lanes inactive (benign: t_max < t_min)
-        auto lone = [](const Ray& ray, size_t k, vmask<W>& active) {
-            RayPacket<W> p;
-            Ray off;
-            off.t_max = -1.0f;
-            for (int i = 0; i < W; ++i) set_ray(p, i, i == int(k % W) ? ray : off);
-            active = mask_from_bits<W>(1u << (k % W));
-            return p;
-        };
-        auto closest = [&](const std::vector<Ray>& rays, const std::vector<Hit>& want) {
+        // blocks of packets with ray k alone in lane k % W, the other lanes inactive (benign:
+        // t_max < t_min), for the first 200k rays; check(p, active, count, first ray) counts
+        // the block's mismatches
+        auto lone_blocks = [](const std::vector<Ray>& rays, auto&& check) {
             std::atomic<size_t> bad{0};
             const size_t n = std::min<size_t>(rays.size(), 200000);
             tbb::parallel_for(size_t(0), (n + per_block - 1) / per_block, [&](size_t b) {
                 RayPacket<W> p[per_block];
                 vmask<W> active[per_block] = {};
-                HitPacket<W> got[per_block];
                 int count = 0;
-                for (size_t k = b * per_block; k < std::min(n, (b + 1) * per_block); ++k)
-                    p[count] = lone(rays[k], k, active[count]), ++count;
+                for (size_t k = b * per_block; k < std::min(n, (b + 1) * per_block); ++k, ++count) {
+                    Ray off;
+                    off.t_max = -1.0f;
+                    for (int i = 0; i < W; ++i)
+                        set_ray(p[count], i, i == int(k % W) ? rays[k] : off);
+                    active[count] = mask_from_bits<W>(1u << (k % W));
+                }
+                bad += check(p, active, count, b * per_block);
+            });
+            return bad.load();
+        };
+        auto closest = [&](const std::vector<Ray>& rays, const std::vector<Hit>& want) {
+            return lone_blocks(rays, [&](const RayPacket<W>* p, const vmask<W>* active, int count,
+                                         size_t first) {
+                HitPacket<W> got[per_block];
                 intersect_closest_block(l->scene, l->accel, p, active, got, count);
+                size_t bad = 0;
                 for (int c = 0; c < count; ++c) {
-                    const size_t k = b * per_block + size_t(c);
+                    const size_t k = first + size_t(c);
                     const HitPacket<W> alone =
                         intersect_closest(l->scene, l->accel, p[c], active[c]);
                     for (const HitPacket<W>& h : {got[c], alone}) {
@@ -654,28 +661,24 @@ TYPED_TEST(IntersectPacket, LoneLanesMatchScalar) {
                             ++bad;
                     }
                 }
+                return bad;
             });
-            return bad.load();
         };
         auto any_hit = [&](const std::vector<Ray>& rays, const std::vector<uint8_t>& want) {
-            std::atomic<size_t> bad{0};
-            const size_t n = std::min<size_t>(rays.size(), 200000);
-            tbb::parallel_for(size_t(0), (n + per_block - 1) / per_block, [&](size_t b) {
-                RayPacket<W> p[per_block];
-                vmask<W> active[per_block] = {}, got[per_block] = {};
-                int count = 0;
-                for (size_t k = b * per_block; k < std::min(n, (b + 1) * per_block); ++k)
-                    p[count] = lone(rays[k], k, active[count]), ++count;
+            return lone_blocks(rays, [&](const RayPacket<W>* p, const vmask<W>* active, int count,
+                                         size_t first) {
+                vmask<W> got[per_block] = {};
                 intersect_any_block(l->scene, l->accel, p, active, got, count);
+                size_t bad = 0;
                 for (int c = 0; c < count; ++c) {
-                    const size_t k = b * per_block + size_t(c);
+                    const size_t k = first + size_t(c);
                     const uint32_t lane = 1u << (k % W);
                     const uint32_t alone = bits(intersect_any(l->scene, l->accel, p[c], active[c]));
-                    if (((bits(got[c]) & lane) != 0) != (want[k] != 0)) ++bad;
-                    if (((alone & lane) != 0) != (want[k] != 0)) ++bad;
+                    bad += ((bits(got[c]) & lane) != 0) != (want[k] != 0);
+                    bad += ((alone & lane) != 0) != (want[k] != 0);
                 }
+                return bad;
             });
-            return bad.load();
         };
         EXPECT_EQ(closest(s.camera, s.camera_hits), 0u) << name << " camera rays";
         EXPECT_EQ(any_hit(s.shadow, s.shadow_blocked), 0u) << name << " shadow rays";
