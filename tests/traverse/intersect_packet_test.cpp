@@ -626,7 +626,7 @@ TYPED_TEST(IntersectPacket, LoneLanesMatchScalar) {
         // blocks of packets with ray k alone in lane k % W, the other lanes inactive (benign:
         // t_max < t_min), for the first 200k rays; check(p, active, count, first ray) counts
         // the block's mismatches
-        auto lone_blocks = [](const std::vector<Ray>& rays, auto&& check) {
+        auto lone_blocks = [&](const std::vector<Ray>& rays, auto&& check) {
             std::atomic<size_t> bad{0};
             const size_t n = std::min<size_t>(rays.size(), 200000);
             tbb::parallel_for(size_t(0), (n + per_block - 1) / per_block, [&](size_t b) {
