@@ -37,5 +37,7 @@ void require_file(const std::string& path);
 void add_scene(py::module_& m);
 /// Mesh, load_mesh and save_rays (mesh_binding.cpp).
 void add_mesh(py::module_& m);
+/// instruction_sets and use_isa (raylane_module.cpp).
+void add_isa(py::module_& m);
 
 }  // namespace raylane::python

@@ -4,10 +4,45 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/isa.h"
 #include "python/bindings.h"
-#include "simd/simd.h"
 
 namespace raylane::python {
+
+namespace {
+
+py::list isa_names(const std::vector<Isa>& sets) {
+    py::list names;
+    for (Isa isa : sets) names.append(isa_name(isa));
+    return names;
+}
+
+}  // namespace
+
+void add_isa(py::module_& m) {
+    m.def(
+        "instruction_sets",
+        [] {
+            std::vector<Isa> compiled, cpu;
+            for (Isa isa : all_isas) {
+                if (isa_compiled(isa)) compiled.push_back(isa);
+                if (cpu_runs(isa)) cpu.push_back(isa);
+            }
+            const Isa in_use = active_isa();
+            py::dict d;
+            d["compiled"] = isa_names(compiled);
+            d["cpu"] = isa_names(cpu);
+            d["in_use"] = isa_name(in_use);
+            d["packet_width"] = isa_width(in_use);
+            return d;
+        },
+        "The packet path's instruction sets: 'compiled' (in this module), 'cpu' (those this CPU "
+        "runs), 'in_use' (RAYLANE_ISA's, or use_isa's, else the widest) and its 'packet_width'.");
+    m.def(
+        "use_isa", [](const std::string& name) { use_isa_named(name, "use_isa"); }, py::arg("name"),
+        "Uses the instruction set `name` ('sse4.2', 'avx2' or 'avx512') from now on; "
+        "raylane.Error (a ValueError) when it is unknown or this CPU does not run it.");
+}
 
 void require_file(const std::string& path) {
     std::error_code ec;
@@ -23,7 +58,6 @@ PYBIND11_MODULE(raylane, m) {
         "Raylane: scenes rendered to NumPy images, and ray queries against triangle meshes on "
         "the SIMD packet path. See docs/python.md.";
     m.attr("__version__") = RAYLANE_VERSION;
-    m.attr("packet_width") = raylane::native_width;
     py::register_exception<raylane::InputError>(m, "Error", PyExc_ValueError);
     py::register_exception_translator([](std::exception_ptr p) {
         try {
@@ -36,4 +70,5 @@ PYBIND11_MODULE(raylane, m) {
     });
     add_scene(m);
     add_mesh(m);
+    add_isa(m);
 }

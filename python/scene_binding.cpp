@@ -9,13 +9,13 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "core/isa.h"
 #include "python/bindings.h"
 #include "render/compare.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "render/report_metrics.h"
 #include "scene/features.h"
-#include "simd/simd.h"
 
 namespace raylane::python {
 namespace {
@@ -158,7 +158,8 @@ py::dict compare(SceneHandle& h, int spp, int threads, int width, int height, in
     d["height"] = h.scene.camera.height;
     d["spp"] = params.spp;
     d["repeats"] = repeats;
-    d["packet_width"] = native_width;
+    d["isa"] = isa_name(active_isa());
+    d["packet_width"] = isa_width(active_isa());
     d["scalar_ms"] = scalar_ms;
     d["packet_ms"] = packet_ms;
     d["speedup"] = scalar_ms / packet_ms;

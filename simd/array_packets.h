@@ -8,7 +8,7 @@
 #include "simd/lanes.h"
 #include "simd/simd.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// True when compact, compress_store, the masked load and store and gather_u8 are single
 /// instructions at width W: AVX-512 (with AVX-512VL at W = 4 and 8). Elsewhere they go lane by
@@ -104,4 +104,4 @@ inline PInt<A> gather_u8(const uint8_t* base, const PInt<A>& index, const PMask<
     return PInt<A>::load_aligned(out);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

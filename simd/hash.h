@@ -7,7 +7,7 @@
 #include "simd/math.h"
 #include "simd/simd.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// rng.h's hash_u32 (Wellons' "lowbias32", 2018) on every lane.
 template <int W>
@@ -37,4 +37,4 @@ inline vfloat<W> random_float(vint<W> pixel, vint<W> sample, vint<W> dim, vint<W
     return to_float(top24) * vfloat<W>(0x1.0p-24f);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -9,7 +9,7 @@
 
 #include "simd/simd.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 // ---- lane access ----------------------------------------------------------------------------
 
@@ -341,4 +341,4 @@ inline PFloat<A> gather(const float* base, const PInt<A>& index, const PMask<A>&
     return PFloat<A>::load_aligned(out);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -9,7 +9,7 @@
 
 #include "simd/simd.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 // ---- basic float functions ------------------------------------------------------------------
 
@@ -391,4 +391,4 @@ inline float hsum(const V& v) {
     return hsum(v, vmask<width_of<V>>(true));
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -8,6 +8,8 @@
 #include <limits>
 #include <type_traits>
 
+#include "simd/namespace.h"
+
 // GCC 12's AVX-512 intrinsics (_mm512_undefined_ps: "__m512 __Y = __Y;") warn -W[maybe-]
 // uninitialized wherever they are inlined (GCC bug 105593, fixed in 12.3). The warning points into
 // these headers, so silencing it around their first inclusion keeps -Werror builds clean.
@@ -21,11 +23,11 @@
 #include <xsimd/xsimd.hpp>
 #pragma GCC diagnostic pop
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 // ---- widths --------------------------------------------------------------------------------
 
-/// The widest packet this build's ISA runs natively (one ISA per build, chosen by -march).
+/// The packet width of this instruction set's copy of the code: 16 (avx512), 8 (avx2), 4 (sse4.2).
 #if defined(__AVX512F__)
 inline constexpr int native_width = 16;
 #elif defined(__AVX2__) && defined(__FMA__)
@@ -34,6 +36,17 @@ inline constexpr int native_width = 8;
 inline constexpr int native_width = 4;
 #else
 inline constexpr int native_width = 1;
+#endif
+
+/// X(W) for each width this set's code is instantiated at (the explicit instantiations of the
+/// .cpp files, the typed tests): sse4.2: 1 (the scalar width, for the tests) and 4; avx2: 8;
+/// avx512: 16, and 8 (its 8-wide leaf and node tests, tested on their own).
+#if defined(__AVX512F__)
+#define RAYLANE_FOR_EACH_WIDTH(X) X(8) X(16)
+#elif defined(__AVX2__) && defined(__FMA__)
+#define RAYLANE_FOR_EACH_WIDTH(X) X(8)
+#else
+#define RAYLANE_FOR_EACH_WIDTH(X) X(1) X(4)
 #endif
 
 namespace simd_detail {
@@ -315,4 +328,4 @@ inline PFloat<A> int_as_float(const PInt<A>& v) {
     return xsimd::bitwise_cast<PFloat<A>>(v);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -7,7 +7,7 @@
 #include "simd/math.h"
 #include "simd/simd.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// W three-component vectors, one packet per component.
 template <int W>
@@ -162,4 +162,4 @@ inline Vec3<W> select(const vmask<W>& m, const Vec3<W>& a, const Vec3<W>& b) {
     return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -137,9 +137,11 @@ def main():
     sets = [("primary (coherent)", "Closest", camera_rays(mesh, args.rays)),
             ("random (incoherent)", "Closest", random_rays(mesh, args.rays)),
             ("shadow (occluded)", "Occluded", shadow_rays(mesh, args.rays))]
+    isa = raylane.instruction_sets()
     print(f"{args.mesh}: {mesh.triangle_count} triangles; {threads} threads; Mrays/s, medians "
           f"over {args.rounds} rounds of medians of 5; Raylane {raylane.__version__}, packet "
-          f"width {raylane.packet_width}; load average {os.getloadavg()[0]:.1f} at the start\n")
+          f"{isa['in_use']}, width {isa['packet_width']}; load average "
+          f"{os.getloadavg()[0]:.1f} at the start\n")
     print("| rays | count | Python | C++ packet (best of Packet, Block, Stream) | Embree's best "
           "| Python / C++ | Python / Embree |")
     print("|---|---:|---:|---:|---:|---:|---:|")

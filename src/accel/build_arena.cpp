@@ -8,7 +8,7 @@
 
 #include "core/pages.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 namespace {
 
 #if defined(RAYLANE_ADDRESS_SANITIZER)
@@ -41,4 +41,4 @@ TempBlock::~TempBlock() {
         ::operator delete(base_, std::align_val_t(alignment));
 }
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -6,7 +6,9 @@
 #include <cstddef>
 #include <memory>
 
-namespace raylane::median_detail {
+#include "simd/namespace.h"
+
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 
 /// One block for all of a build's temporaries, carved in order by take(). Fresh pages are most
 /// of what a first build pays for (the 100k dragon's first build took 32 ms against 7.5 ms
@@ -56,4 +58,4 @@ T* begin_array(std::byte* p, size_t n) {
     return a;
 }
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -1,6 +1,7 @@
 // accel: the median-split BVH build (the report's build), flattened depth-first as it goes, for
 // boxes (build_bvh_median) and for a mesh's triangles (build_mesh_accel): the build's memory, the
-// top splitter or one subtree build, then the node bounds. The plain std::nth_element form of the
+// top splitter or one subtree build, then the node bounds. Compiled once per instruction set;
+// accel/dispatch.cpp calls the set in use. The plain std::nth_element form of the
 // same tree is tests/accel/median_reference.h.
 #include <algorithm>
 #include <cassert>
@@ -12,7 +13,7 @@
 #include "accel/bvh.h"
 #include "accel/split_top.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 namespace {
 
 using median_detail::begin_array;
@@ -141,8 +142,8 @@ Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
 
 }  // namespace
 
-Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& params,
-                     MedianSplitPaths* paths) {
+Bvh build_bvh_median_isa(std::span<const Aabb> prim_bounds, const BuildParams& params,
+                         MedianSplitPaths* paths) {
     if (prim_bounds.empty()) return {};
     const size_t n = prim_bounds.size();
     Bvh bvh = median_tree(
@@ -159,12 +160,12 @@ Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& param
     return bvh;
 }
 
-/// The mesh's form of build_bvh_median with no array of triangle boxes: the centroids come
+/// The mesh's form of build_bvh_median_isa with no array of triangle boxes: the centroids come
 /// straight from the vertices (the box Aabb::grow makes of a triangle's three vertices), and
 /// the leaf boxes from the vertices in leaf order, read in sequence, instead of the boxes
 /// gathered by id. The same min and max of the same numbers in the same order, so the same
 /// tree bit for bit (tests/accel/build_median_golden_test.cpp).
-MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
+MeshAccel build_mesh_accel_isa(const Mesh& mesh, const BuildParams& params) {
     MeshAccel accel;
     const size_t n = mesh.tris.size();
     if (n == 0) return accel;
@@ -223,4 +224,4 @@ MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
     return accel;
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

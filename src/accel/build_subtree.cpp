@@ -10,7 +10,7 @@
 #include "accel/radix_sort.h"
 #include "simd/array_packets.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 namespace {
 
 /// The build keeps the primitive ids of every node sorted three times, once per axis by
@@ -140,4 +140,4 @@ void build_subtree(const float* const* c2, uint32_t m, uint32_t base, const uint
     out.lap(&BuildPhases::splits);
 }
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -8,8 +8,9 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "simd/namespace.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 
 /// Aabb::longest_axis of the extents without branches (the axis is unpredictable):
 /// (x >= y && x >= z) ? 0 : (y >= z ? 1 : 2).
@@ -65,4 +66,4 @@ struct SubtreeMemory {
 void build_subtree(const float* const* c2, uint32_t m, uint32_t base, const uint32_t* ids,
                    const SubtreeMemory& mem, const TreeOut& out);
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

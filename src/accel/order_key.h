@@ -9,7 +9,7 @@
 #include "simd/math.h"
 #include "simd/simd.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 
 /// The packet width of the build's vector loops: the widest this build's ISA runs (simd/simd.h).
 /// Every width gives the same tree.
@@ -47,4 +47,4 @@ inline float key_value(uint32_t key) {
 inline int32_t* as_lanes(uint32_t* p) { return reinterpret_cast<int32_t*>(p); }
 inline const int32_t* as_lanes(const uint32_t* p) { return reinterpret_cast<const int32_t*>(p); }
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

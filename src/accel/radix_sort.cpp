@@ -7,7 +7,7 @@
 
 #include "accel/order_key.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 namespace {
 
 /// sort_ids_by_key in passes of `digit_bits` bits: an LSD radix sort of (key << 32 | id) items,
@@ -82,4 +82,4 @@ void sort_ids_by_key(const float* values, size_t n, uint32_t* out, uint64_t* ite
         sort_by_digits<8>(values, n, out, items, scratch);
 }
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -5,7 +5,9 @@
 #include <cstddef>
 #include <cstdint>
 
-namespace raylane::median_detail {
+#include "simd/namespace.h"
+
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 
 /// The key count from which the sort uses 16-bit digits (two passes with histograms of 65,536
 /// counts) instead of 8-bit ones (four passes of 256 counts).
@@ -16,4 +18,4 @@ inline constexpr size_t wide_digits_from = size_t(1) << 16;
 void sort_ids_by_key(const float* values, size_t n, uint32_t* out, uint64_t* items,
                      uint64_t* scratch);
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -8,7 +8,7 @@
 #include "accel/order_key.h"
 #include "simd/lanes.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 namespace {
 
 /// The k-th smallest (from 0) of m keys and how many of the keys are smaller, for keys that are
@@ -207,4 +207,4 @@ std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uin
     return child;
 }
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -8,7 +8,7 @@
 
 #include "accel/split_top.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 
 /// The split of the node c[begin, end) that gives its first child `left` primitives. The keys
 /// between two keys of an even sample that bracket the median (all keys, in a node of fewer
@@ -31,4 +31,4 @@ std::optional<std::array<SplitKey, 2>> select_children(const TopArrays& cur, uin
                                                        const int child_axis[2], uint32_t* sample,
                                                        uint32_t* keys, uint32_t capacity);
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -10,7 +10,7 @@
 #include "accel/select_split.h"
 #include "simd/math.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 namespace {
 
 /// The smallest and largest order_key of a node's centroids on each axis.
@@ -253,4 +253,4 @@ void TopSplitter::build(uint32_t begin, uint32_t end, const TopArrays& cur,
     build(mid, end, other, spare);
 }
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -10,7 +10,7 @@
 #include "accel/order_key.h"
 #include "simd/lanes.h"
 
-namespace raylane::median_detail {
+namespace raylane::RAYLANE_ISA_NS::median_detail {
 
 /// Keys in the even sample of a node whose two keys around the median bracket it.
 inline constexpr uint32_t bracket_samples = 4096;
@@ -81,4 +81,4 @@ struct TopSplitter {
     void build(uint32_t begin, uint32_t end, const TopArrays& cur, const TopArrays& other) const;
 };
 
-}  // namespace raylane::median_detail
+}  // namespace raylane::RAYLANE_ISA_NS::median_detail

@@ -17,9 +17,13 @@ void add_report_command(CLI::App& app, int& exit_code);
 void add_scene_command(CLI::App& app, int& exit_code);
 void add_assemble_command(CLI::App& app, int& exit_code);
 
-/// What `raylane --version` prints: the version and the instruction set and packet width the
-/// packet path was built for.
+/// What `raylane --version` prints: the version, and the instruction sets compiled in, those this
+/// CPU runs and the one in use (core/isa.h).
 std::string version_text();
+
+/// Adds --isa to a command: the packet path's instruction set (sse4.2, avx2, avx512), stored in
+/// `isa` for main to apply.
+void add_isa_option(CLI::App* cmd, std::string& isa);
 
 /// Adds --bvh to a command: median (the report's build, the default) or sah (binned SAH, a
 /// comparison option).

@@ -15,10 +15,10 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/isa.h"
 #include "image/film.h"
 #include "io/load_scene.h"
 #include "io/model_scene.h"
-#include "simd/simd.h"
 
 namespace raylane {
 
@@ -27,6 +27,12 @@ void add_bvh_option(CLI::App* cmd, std::string& bvh) {
                     "BVH build: median (the report's median split, default) or sah (binned SAH, "
                     "for comparison)")
         ->check(CLI::IsMember({"median", "sah"}));
+}
+
+void add_isa_option(CLI::App* cmd, std::string& isa) {
+    cmd->add_option("--isa", isa,
+                    "instruction set of the packet path: sse4.2 (W = 4), avx2 (W = 8) or avx512 "
+                    "(W = 16); default: RAYLANE_ISA, else the widest this CPU runs");
 }
 
 void add_threads_option(CLI::App* cmd, int& threads) {
@@ -90,12 +96,13 @@ BuildParams build_params(const std::string& bvh) {
 }
 
 std::string version_text() {
-    const char* isa = native_width == 16  ? "AVX-512"
-                      : native_width == 8 ? "AVX2 and FMA"
-                      : native_width == 4 ? "SSE"
-                                          : "no SIMD";
-    return std::string("raylane ") + RAYLANE_VERSION + "\npacket path: " + isa + ", " +
-           std::to_string(native_width) + " rays per packet";
+    std::string text = std::string("raylane ") + RAYLANE_VERSION + "\n";
+    try {
+        text += isa_summary();
+    } catch (const InputError& e) {  // RAYLANE_ISA names a set this machine does not run
+        text += e.what();
+    }
+    return text;
 }
 
 namespace {

@@ -4,11 +4,11 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "core/isa.h"
 #include "render/compare.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "render/report_metrics.h"
-#include "simd/simd.h"
 
 namespace raylane {
 namespace {
@@ -59,7 +59,8 @@ int run_compare(const CompareOptions& o) {
     std::printf("timing       median of %d run%s per path, after an untimed warm-up\n", o.repeats,
                 o.repeats == 1 ? "" : "s");
     std::printf("scalar       %.1f ms\n", 1000.0 * scalar_median);
-    std::printf("packet       %.1f ms (W = %d)\n", 1000.0 * packet_median, native_width);
+    std::printf("packet       %.1f ms (%s, W = %d)\n", 1000.0 * packet_median,
+                isa_name(active_isa()), isa_width(active_isa()));
     std::printf("speed-up     %.2fx\n", scalar_median / packet_median);
     std::printf("max |diff|   %.3g\n", d.max_abs);
     std::printf("mean |diff|  %.3g\n", d.mean_abs);

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "core/isa.h"
 #include "scene/camera_path.h"
 #include "scene/features.h"
 
@@ -88,6 +89,7 @@ int run_info(const std::string& path, const std::string& bvh) {
             "%.1f ms; wide trees collapsed and leaves packed in %.1f ms\n",
             "", sum.centroids, sum.sorts, sum.splits, sum.vertices, sum.boxes, sum.collapse);
     }
+    std::printf("isa        %s\n", isa_summary().c_str());
     return 0;
 }
 

@@ -9,6 +9,7 @@
 #include "app/commands.h"
 #include "app/render_job.h"
 #include "core/error.h"
+#include "core/isa.h"
 #include "core/pages.h"
 #include "render/tiles.h"
 
@@ -36,7 +37,15 @@ int main(int argc, char** argv) {
     raylane::add_report_command(app, exit_code);
     raylane::add_scene_command(app, exit_code);
     raylane::add_assemble_command(app, exit_code);
-    app.set_version_flag("--version", raylane::version_text());
+    app.set_version_flag("--version", [] { return raylane::version_text(); });
+    // --isa on every command; the set is chosen once the whole command line is read, before
+    // the command runs
+    std::string isa;
+    for (CLI::App* cmd : app.get_subcommands({})) raylane::add_isa_option(cmd, isa);
+    app.parse_complete_callback([&isa] {
+        raylane::use_isa_named(isa, "--isa");
+        raylane::active_isa();  // RAYLANE_ISA, checked before any work
+    });
     // CLI11 answers an unknown command word with "A subcommand is required": name it instead
     if (argc > 1 && argv[1][0] != '-') {
         std::string names;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/isa.h"
 #include "core/rng.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
@@ -17,7 +18,6 @@
 #include "render/warnings.h"
 #include "scene/camera_path.h"
 #include "scene/features.h"
-#include "simd/simd.h"
 
 namespace raylane {
 
@@ -256,13 +256,16 @@ void print_header(const RenderJob& job, int ranks) {
                     frame_count(job.scene.camera_path) - 1);
     }
     const char* path = job.scalar ? "scalar" : "packet";
-    if (ranks > 1)
-        std::printf("path       %s (W = %d), %d ranks x %d threads\n", path,
-                    job.scalar ? 1 : native_width, ranks, threads);
+    if (ranks > 1 && job.scalar)
+        std::printf("path       %s (W = 1), %d ranks x %d threads\n", path, ranks, threads);
+    else if (ranks > 1)
+        std::printf("path       %s (%s, W = %d), %d ranks x %d threads\n", path,
+                    isa_name(active_isa()), isa_width(active_isa()), ranks, threads);
     else if (job.scalar)
         std::printf("path       scalar, %d threads\n", threads);
     else
-        std::printf("path       packet (W = %d), %d threads\n", native_width, threads);
+        std::printf("path       packet (%s, W = %d), %d threads\n", isa_name(active_isa()),
+                    isa_width(active_isa()), threads);
     std::fflush(stdout);
 }
 

@@ -14,13 +14,13 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/isa.h"
 #include "image/plot_svg.h"
 #include "render/report_analytic.h"
 #include "render/report_cache.h"
 #include "render/report_metrics.h"
 #include "render/report_sweep.h"
 #include "render/tiles.h"
-#include "simd/simd.h"
 
 namespace raylane {
 namespace {
@@ -56,7 +56,8 @@ std::string build_description() {
 #ifdef RAYLANE_SANITIZED
     s += ", sanitizers";
 #endif
-    s += ", -ffp-contract=off, W = " + std::to_string(native_width);
+    s += ", -ffp-contract=off, " + std::string(isa_name(active_isa())) +
+         ", W = " + std::to_string(isa_width(active_isa()));
     return s;
 }
 
@@ -138,8 +139,8 @@ struct LoadedScene {
 /// The first lines of a scene's report: the scene, the build and the setup times.
 void print_scene_header(const LoadedScene& ls, int threads, double build_ms) {
     const int w = ls.scene.camera.width, h = ls.scene.camera.height;
-    std::printf("report  scene=%s  %dx%d  threads=%d  W=%d\n", ls.path.c_str(), w, h, threads,
-                native_width);
+    std::printf("report  scene=%s  %dx%d  threads=%d  isa=%s  W=%d\n", ls.path.c_str(), w, h,
+                threads, isa_name(active_isa()), isa_width(active_isa()));
     std::printf("build   %s; %s\n", build_description().c_str(), cpu_model().c_str());
     std::printf("setup   load %.1f ms, BVH build %.1f ms (not in the times below)\n", ls.load_ms,
                 build_ms);

@@ -8,7 +8,7 @@
 #include "simd/math.h"
 #include "simd/vec3.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// ray_reach, lane-wise.
 template <int W>
@@ -36,4 +36,4 @@ inline Vec3<W> offset_ray_origin(const Vec3<W>& p, const Vec3<W>& n, const vfloa
     return {axis(p.x, n.x), axis(p.y, n.y), axis(p.z, n.z)};
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -5,7 +5,7 @@
 #include "simd/lanes.h"
 #include "simd/vec3.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// W rays o + t d accepted for t in the open interval (t_min, t_max). Inactive lanes must hold
 /// a benign ray (finite origin and direction, t_max <= t_min) so they never produce a hit.
@@ -65,4 +65,4 @@ Hit get_hit(const HitPacket<W>& h, int i) {
     return hit;
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

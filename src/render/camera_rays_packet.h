@@ -5,7 +5,7 @@
 #include "render/camera_rays.h"
 #include "shade/lights_packet.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// The unit-direction rays through image positions (x, y), lane-wise camera_ray.
 template <int W>
@@ -45,4 +45,4 @@ inline RayPacket<W> camera_ray(const CameraFrame& f, const vfloat<W>& x, const v
     return rays;
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -22,7 +22,8 @@ struct ImageDiff {
 ImageDiff diff_images(const Film& a, const Film& b);
 
 /// Primary rays through every pixel centre, traced by the scalar path and by the packet path
-/// at the native width: the number of pixels whose hit (object and primitive) differs.
+/// of the instruction set in use, at its width: the number of pixels whose hit (object and
+/// primitive) differs.
 size_t primary_id_mismatches(const Scene& scene, const Accel& accel);
 
 }  // namespace raylane

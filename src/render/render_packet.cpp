@@ -22,7 +22,7 @@
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_stream.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 namespace {
 
 /// A camera packet covers packet_cols x packet_rows pixels of its tile: 4x4 at W = 16, 4x2 at 8,
@@ -285,7 +285,8 @@ void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParam
             const size_t r = static_cast<size_t>(i);
             if constexpr ((F & feature_refraction) != 0) {
                 if (q.fr[r] != 1.0f || q.fg[r] != 1.0f || q.fb[r] != 1.0f) {
-                    const vec3 f = beer_transmittance(vec3(q.fr[r], q.fg[r], q.fb[r]), b.hits.t[r]);
+                    const vec3 f =
+                        raylane::beer_transmittance(vec3(q.fr[r], q.fg[r], q.fb[r]), b.hits.t[r]);
                     q.wr[r] *= f.x, q.wg[r] *= f.y, q.wb[r] *= f.z;
                 }
             }
@@ -751,19 +752,14 @@ RenderResult render_packet_width(const Scene& scene, const Accel& accel,
 #endif
 }
 
-RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderParams& params) {
+RenderResult render_packet_isa(const Scene& scene, const Accel& accel, const RenderParams& params) {
     return render_packet_width<native_width>(scene, accel, params);
 }
 
-template RenderResult render_packet_width<1>(const Scene&, const Accel&, const RenderParams&);
-#if XSIMD_WITH_SSE2
-template RenderResult render_packet_width<4>(const Scene&, const Accel&, const RenderParams&);
-#endif
-#if XSIMD_WITH_AVX2
-template RenderResult render_packet_width<8>(const Scene&, const Accel&, const RenderParams&);
-#endif
-#if XSIMD_WITH_AVX512F
-template RenderResult render_packet_width<16>(const Scene&, const Accel&, const RenderParams&);
-#endif
+// Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
+#define RAYLANE_INSTANTIATE(W) \
+    template RenderResult render_packet_width<W>(const Scene&, const Accel&, const RenderParams&);
+RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
+#undef RAYLANE_INSTANTIATE
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -8,12 +8,23 @@
 
 namespace raylane {
 
-/// Renders like render_scalar, at the native packet width.
+/// Renders like render_scalar on the packet path of the instruction set in use (core/isa.h), at
+/// its packet width.
 RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderParams& params);
 
-/// The same at a chosen width (1, or any width this build runs), for tests and benchmarks.
+}  // namespace raylane
+
+#if defined(RAYLANE_ISA_NS)  // in this instruction set's copy of the code (simd/namespace.h)
+#include "simd/namespace.h"
+namespace raylane::RAYLANE_ISA_NS {
+
+/// render_packet in this set, at its packet width.
+RenderResult render_packet_isa(const Scene& scene, const Accel& accel, const RenderParams& params);
+
+/// The same at a chosen width (1, or any width this set runs), for tests and benchmarks.
 template <int W>
 RenderResult render_packet_width(const Scene& scene, const Accel& accel,
                                  const RenderParams& params);
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS
+#endif

@@ -7,7 +7,7 @@
 #include "simd/simd.h"
 #include "simd/vec3.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 template <int W>
 inline vmask<W> nonfinite_bits(const vfloat<W>& v) {
@@ -53,4 +53,4 @@ inline Vec3<W> pixel_mean(const PixelSumPacket<W>& p) {
                   make_vec3<W>(0.0f, 0.0f, 0.0f));
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

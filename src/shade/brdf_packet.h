@@ -20,7 +20,7 @@
 #include "simd/simd.h"
 #include "simd/vec3.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 namespace brdf_detail {
 
@@ -365,4 +365,4 @@ inline vfloat<W> pdf_blinn_phong(const Vec3<W>& n, const Vec3<W>& wi, const Vec3
     return select0<W>(mask_and(co > zero, hz > zero), p);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

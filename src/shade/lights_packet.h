@@ -10,7 +10,7 @@
 #include "simd/math.h"
 #include "simd/vec3.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 template <int W>
 struct LightSamplePacket {
@@ -105,4 +105,4 @@ inline LightSamplePacket<W> sample_light(const Light& light, const Vec3<W>& orig
     return ls;
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -12,7 +12,7 @@
 #include "simd/simd.h"
 #include "simd/vec3.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 namespace optics_detail {
 
@@ -92,4 +92,4 @@ inline Vec3<W> beer_transmittance(vec3 filter, const vfloat<W>& distance) {
             beer_channel<W>(filter.z, distance)};
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

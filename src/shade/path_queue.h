@@ -12,7 +12,7 @@
 #include "simd/lanes.h"
 #include "simd/vec3.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Slack past the last ray, so W-wide loads at any ray index stay inside the arrays.
 inline constexpr size_t pad = 16;
@@ -131,4 +131,4 @@ inline void push_packet(ShadowQueue& q, const Vec3<W>& o, const Vec3<W>& d, cons
     q.size += count(m);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -15,7 +15,7 @@
 #include "simd/lanes.h"
 #include "traverse/intersect_block.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Closest hits of a PathQueue's rays, one array per field (index = ray).
 struct HitArrays {
@@ -202,4 +202,4 @@ inline ShadeInput<W> gather_shade_input(const PathQueue& q, const HitArrays& h,
     return in;
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

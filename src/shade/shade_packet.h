@@ -30,7 +30,7 @@
 #include "traverse/intersect_block.h"
 #include "traverse/intersect_packet.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 namespace shade_detail {
 
 /// A hit ready for shading: position, normals turned to face the viewer, colours after textures
@@ -359,4 +359,4 @@ void shade_batch(const Scene& scene, const Material& m, const ShadeParams& param
                      active, out);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

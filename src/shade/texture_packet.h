@@ -12,7 +12,7 @@
 #include "simd/math.h"
 #include "simd/vec3.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// W texture coordinates.
 template <int W>
@@ -21,7 +21,8 @@ struct Uv {
     vfloat<W> v = vfloat<W>(0.0f);
 };
 
-namespace texture_detail {
+// texture_detail (texture_scalar.h) holds the constants both twins share
+namespace texture_packet_detail {
 
 // floor, round (half away from zero), atan2, asin lane by lane: floor and round are exact in
 // xsimd, so they agree at every W; atan2 and asin call std:: per lane, because a texel chosen by
@@ -135,7 +136,7 @@ inline Vec3<W> perpendicular(const Vec3<W>& n) {
     return {vfloat<W>(1.0f) + sign * n.x * n.x * a, sign * b, neg(sign) * n.x};
 }
 
-}  // namespace texture_detail
+}  // namespace texture_packet_detail
 
 /// texture_lookup of texture_scalar.h with each axis's wrap mode given, for the lanes in
 /// `active`: each active lane equals the scalar result for its (u, v) bit for bit. Inactive
@@ -145,6 +146,7 @@ template <int W>
 inline Vec3<W> texture_lookup(const Texture& t, vfloat<W> u, vfloat<W> v, vmask<W> active,
                               bool repeat_u, bool repeat_v) {
     using namespace texture_detail;
+    using namespace texture_packet_detail;
     const vmask<W> m = mask_andnot(mask_andnot(active, is_nan(u)), is_nan(v));  // NaN: black
     if (none(m)) return {};
     if (t.kind == TextureKind::checker) return checker_lookup<W>(t, u, v, m);
@@ -165,6 +167,7 @@ inline Vec3<W> texture_lookup(const Texture& t, vfloat<W> u, vfloat<W> v, vmask<
 template <int W>
 inline Uv<W> latlong_uv(const Vec3<W>& dir) {
     using namespace texture_detail;
+    using namespace texture_packet_detail;
     const vfloat<W> one(1.0f), minus_one(-1.0f);
     const vfloat<W> largest = max(max(abs(dir.x), abs(dir.y)), abs(dir.z));
     const Vec3<W> d{dir.x / largest, dir.y / largest, dir.z / largest};
@@ -196,6 +199,7 @@ template <int W>
 inline Vec3<W> normal_from_map(NormalMapMode mode, const Vec3<W>& texel, const Vec3<W>& n,
                                const Vec3<W>& dpdu, const glm::mat3& normal_to_world) {
     using namespace texture_detail;
+    using namespace texture_packet_detail;
     const Vec3<W> nn = normalize(n);
     Vec3<W> m;
     if (mode == NormalMapMode::replace) {
@@ -222,6 +226,7 @@ inline Vec3<W> normal_from_map(NormalMapMode mode, const Vec3<W>& texel, const V
 template <int W>
 inline Vec3<W> keep_above(const Vec3<W>& ns, const Vec3<W>& r) {
     using namespace texture_detail;
+    using namespace texture_packet_detail;
     const vfloat<W> c = dot(ns, r);
     const vfloat<W> cos_min(keep_above_cos);
     const vmask<W> above = c >= cos_min;
@@ -237,6 +242,7 @@ inline Vec3<W> keep_above(const Vec3<W>& ns, const Vec3<W>& r) {
 template <int W>
 inline Vec3<W> face_viewer(const Vec3<W>& ns, const Vec3<W>& ng, const Vec3<W>& wo) {
     using namespace texture_detail;
+    using namespace texture_packet_detail;
     const vfloat<W> cos_min(keep_above_cos);
     const vfloat<W> a = dot(ns, wo);
     const vmask<W> facing = a >= cos_min;
@@ -247,4 +253,4 @@ inline Vec3<W> face_viewer(const Vec3<W>& ns, const Vec3<W>& ng, const Vec3<W>& 
     return select(facing, ns, m / sqrt(dot(m, m)));
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -8,7 +8,7 @@
 #include "traverse/box_scalar.h"
 #include "traverse/slab_scalar.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Per lane, the nearest t in the open interval (t_min, t_max) where the ray meets the box, or
 /// infinity (misses and inactive lanes); the exit t when the origin is inside. The slab test of
@@ -53,4 +53,4 @@ inline vfloat<W> intersect_box(const Box& b, const RayPacket<W>& rays, vmask<W> 
     return select(live, t, inf);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

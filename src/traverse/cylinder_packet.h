@@ -7,7 +7,7 @@
 #include "scene/scene.h"
 #include "traverse/cylinder_scalar.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Per lane, the nearest t in the open interval (t_min, t_max) where the ray meets the cylinder
 /// x^2 + z^2 <= r^2, 0 <= y <= h (side and both caps), or infinity (misses and inactive lanes);
@@ -83,4 +83,4 @@ inline vfloat<W> intersect_cylinder(const Cylinder& cyl, const RayPacket<W>& ray
     return select(live, t, inf);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

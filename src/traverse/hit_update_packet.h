@@ -5,7 +5,7 @@
 #include "core/ray_packet.h"
 #include "traverse/intersect_scalar.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Upper end of the open interval a node or candidate must beat (intersect_scalar.cpp: t_limit):
 /// tie_ulps above the current hit, so ties and near-ties reach the (t, object, prim) tie-break.
@@ -47,4 +47,4 @@ void record(HitPacket<W>& hit, vmask<W> win, const vfloat<W>& t, uint32_t object
     hit.prim = select(win, vint<W>(static_cast<int32_t>(prim)), hit.prim);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

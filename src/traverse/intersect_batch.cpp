@@ -12,12 +12,13 @@
 #include <vector>
 
 #include "core/ray_packet.h"
+#include "traverse/batch_rays.h"
 #include "traverse/intersect_block.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/intersect_stream.h"
 #include "traverse/triangle_scalar.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 namespace {
 
 /// Flush-to-zero and denormals-are-zero (numerics.md §0.2) for a task; the thread's own modes
@@ -29,20 +30,6 @@ struct FlushToZero {
     FlushToZero(const FlushToZero&) = delete;
     FlushToZero& operator=(const FlushToZero&) = delete;
 };
-
-/// Ray i, and whether it is traced: finite origin and direction, a direction that is not zero,
-/// and t_max > 0.
-bool read_ray(const RayArrays& rays, size_t i, Ray& ray) {
-    const float* o = rays.org + i * rays.org_stride;
-    const float* d = rays.dir + i * rays.dir_stride;
-    ray.org = vec3(o[0], o[1], o[2]);
-    ray.dir = vec3(d[0], d[1], d[2]);
-    ray.t_min = 0.0f;
-    ray.t_max = rays.t_max ? rays.t_max[i] : rays.t_max_all;
-    const bool finite = std::isfinite(o[0]) && std::isfinite(o[1]) && std::isfinite(o[2]) &&
-                        std::isfinite(d[0]) && std::isfinite(d[1]) && std::isfinite(d[2]);
-    return finite && ray.dir != vec3(0.0f) && ray.t_max > 0.0f;
-}
 
 /// The geometric normal surface_at gives for ray i's hit: from the table when there is one,
 /// straight from the triangle's corners for a mesh otherwise.
@@ -97,23 +84,6 @@ void run_tasks(size_t count, int threads, Body&& body) {
         });
     });
 }
-
-/// The automatic choice's test: every direction within about 25 degrees of the first one's
-/// (cosine >= 0.9, compared squared: no square root or division per ray).
-struct ConeTest {
-    vec3 first{0.0f};
-    float first_len2 = 0.0f;
-    bool inside = true;
-    void add(vec3 d) {
-        const float len2 = glm::dot(d, d);
-        if (first_len2 == 0.0f) {
-            first = d, first_len2 = len2;
-            return;
-        }
-        const float c = glm::dot(d, first);
-        inside = inside && c > 0.0f && c * c >= 0.81f * len2 * first_len2;
-    }
-};
 
 /// Packets of rays first .. first + n - 1 (n <= max_block_rays): ceil(n / W) packets, lanes of
 /// rays that are not traced (read_ray's rule, tested a packet at a time) inactive with a benign
@@ -314,32 +284,9 @@ void any_packet_task(const Scene& scene, const Accel& accel, const RayArrays& ra
 
 }  // namespace
 
-bool rays_coherent(const RayArrays& rays, size_t first, size_t count) {
-    ConeTest cone;
-    for (size_t i = first; i < first + count; ++i) {
-        Ray ray;
-        if (read_ray(rays, i, ray)) cone.add(ray.dir);
-    }
-    return cone.inside;
-}
-
-TriangleNormals make_triangle_normals(const Scene& scene) {
-    TriangleNormals normals;
-    for (const Mesh& mesh : scene.meshes) {
-        std::vector<vec3>& n = normals.meshes.emplace_back(mesh.tris.size());
-        for (size_t i = 0; i < mesh.tris.size(); ++i) {
-            const glm::uvec3 t = mesh.tris[i];
-            n[i] = geometry_triangle<float>(mesh.positions[t.x], mesh.positions[t.y],
-                                            mesh.positions[t.z], 0.0f, 0.0f)
-                       .normal;
-        }
-    }
-    return normals;
-}
-
-void intersect_closest_batch(const Scene& scene, const Accel& accel, const RayArrays& rays,
-                             const HitBuffers& hits, const BatchParams& params,
-                             const TriangleNormals* normals) {
+void intersect_closest_batch_isa(const Scene& scene, const Accel& accel, const RayArrays& rays,
+                                 const HitBuffers& hits, const BatchParams& params,
+                                 const TriangleNormals* normals) {
     const Output out{scene, rays, hits, normals};
     run_tasks(rays.count, params.threads, [&](size_t first, size_t last) {
         if (params.path == BatchPath::packet) {
@@ -355,8 +302,8 @@ void intersect_closest_batch(const Scene& scene, const Accel& accel, const RayAr
     });
 }
 
-void intersect_any_batch(const Scene& scene, const Accel& accel, const RayArrays& rays,
-                         uint8_t* occluded, const BatchParams& params) {
+void intersect_any_batch_isa(const Scene& scene, const Accel& accel, const RayArrays& rays,
+                             uint8_t* occluded, const BatchParams& params) {
     run_tasks(rays.count, params.threads, [&](size_t first, size_t last) {
         if (params.path == BatchPath::packet) {
             any_packet_task<native_width>(scene, accel, rays, occluded, params.coherence, first,
@@ -370,4 +317,4 @@ void intersect_any_batch(const Scene& scene, const Accel& accel, const RayArrays
     });
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -15,7 +15,7 @@
 #include "traverse/slab_packet.h"
 #include "traverse/triangle_packet.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 namespace {
 
@@ -540,28 +540,13 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
     });
 }
 
-// Instantiations: W = 1 (the packet code at scalar width) and every width this build runs.
-template void intersect_closest_block<1>(const Scene&, const Accel&, const RayPacket<1>*,
-                                         const vmask<1>*, HitPacket<1>*, int);
-template void intersect_any_block<1>(const Scene&, const Accel&, const RayPacket<1>*,
-                                     const vmask<1>*, vmask<1>*, int);
-#if XSIMD_WITH_SSE2
-template void intersect_closest_block<4>(const Scene&, const Accel&, const RayPacket<4>*,
-                                         const vmask<4>*, HitPacket<4>*, int);
-template void intersect_any_block<4>(const Scene&, const Accel&, const RayPacket<4>*,
-                                     const vmask<4>*, vmask<4>*, int);
-#endif
-#if XSIMD_WITH_AVX2
-template void intersect_closest_block<8>(const Scene&, const Accel&, const RayPacket<8>*,
-                                         const vmask<8>*, HitPacket<8>*, int);
-template void intersect_any_block<8>(const Scene&, const Accel&, const RayPacket<8>*,
-                                     const vmask<8>*, vmask<8>*, int);
-#endif
-#if XSIMD_WITH_AVX512F
-template void intersect_closest_block<16>(const Scene&, const Accel&, const RayPacket<16>*,
-                                          const vmask<16>*, HitPacket<16>*, int);
-template void intersect_any_block<16>(const Scene&, const Accel&, const RayPacket<16>*,
-                                      const vmask<16>*, vmask<16>*, int);
-#endif
+// Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
+#define RAYLANE_INSTANTIATE(W)                                                                \
+    template void intersect_closest_block<W>(const Scene&, const Accel&, const RayPacket<W>*, \
+                                             const vmask<W>*, HitPacket<W>*, int);            \
+    template void intersect_any_block<W>(const Scene&, const Accel&, const RayPacket<W>*,     \
+                                         const vmask<W>*, vmask<W>*, int);
+RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
+#undef RAYLANE_INSTANTIATE
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -6,7 +6,7 @@
 #include "core/ray_packet.h"
 #include "scene/scene.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Most rays a block may hold: a 16 x 16 tile.
 inline constexpr int max_block_rays = 256;
@@ -27,4 +27,4 @@ template <int W>
 void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
                          const vmask<W>* active, vmask<W>* occluded, int count);
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

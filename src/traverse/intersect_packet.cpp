@@ -17,7 +17,7 @@
 #include "traverse/sphere_packet.h"
 #include "traverse/triangle_packet.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 namespace {
 
@@ -614,52 +614,24 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
     return sp;
 }
 
-// Instantiations: W = 1 (the packet code at scalar width) and every width this build runs.
+// Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
+#define RAYLANE_INSTANTIATE(W)                                                                     \
+    template HitPacket<W> intersect_closest<W>(const Scene&, const Accel&, const RayPacket<W>&,    \
+                                               vmask<W>, vint<W>*);                                \
+    template vmask<W> intersect_any<W>(const Scene&, const Accel&, const RayPacket<W>&, vmask<W>); \
+    template void intersect_object_closest_from<W>(const Scene&, const Accel&, uint32_t,           \
+                                                   const RayPacket<W>&, vmask<W>, HitPacket<W>&,   \
+                                                   WideRef);                                       \
+    template vmask<W> intersect_object_any_from<W>(const Scene&, const Accel&, uint32_t,           \
+                                                   const RayPacket<W>&, vmask<W>, WideRef);        \
+    template SurfacePacket<W> surface_at<W>(const Scene&, const RayPacket<W>&,                     \
+                                            const HitPacket<W>&, vmask<W>);
+RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
+#undef RAYLANE_INSTANTIATE
+#if defined(__AVX2__)  // W = 1 is among the sse4.2 set's widths; the others trace at W = 1 only
+                       // the bvh-cost image's single rays (render_packet.cpp)
 template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const RayPacket<1>&,
                                            vmask<1>, vint<1>*);
-template vmask<1> intersect_any<1>(const Scene&, const Accel&, const RayPacket<1>&, vmask<1>);
-template void intersect_object_closest_from<1>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<1>&, vmask<1>, HitPacket<1>&,
-                                               WideRef);
-template vmask<1> intersect_object_any_from<1>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<1>&, vmask<1>, WideRef);
-template SurfacePacket<1> surface_at<1>(const Scene&, const RayPacket<1>&, const HitPacket<1>&,
-                                        vmask<1>);
-#if XSIMD_WITH_SSE2
-template HitPacket<4> intersect_closest<4>(const Scene&, const Accel&, const RayPacket<4>&,
-                                           vmask<4>, vint<4>*);
-template vmask<4> intersect_any<4>(const Scene&, const Accel&, const RayPacket<4>&, vmask<4>);
-template void intersect_object_closest_from<4>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<4>&, vmask<4>, HitPacket<4>&,
-                                               WideRef);
-template vmask<4> intersect_object_any_from<4>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<4>&, vmask<4>, WideRef);
-template SurfacePacket<4> surface_at<4>(const Scene&, const RayPacket<4>&, const HitPacket<4>&,
-                                        vmask<4>);
-#endif
-#if XSIMD_WITH_AVX2
-template HitPacket<8> intersect_closest<8>(const Scene&, const Accel&, const RayPacket<8>&,
-                                           vmask<8>, vint<8>*);
-template vmask<8> intersect_any<8>(const Scene&, const Accel&, const RayPacket<8>&, vmask<8>);
-template void intersect_object_closest_from<8>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<8>&, vmask<8>, HitPacket<8>&,
-                                               WideRef);
-template vmask<8> intersect_object_any_from<8>(const Scene&, const Accel&, uint32_t,
-                                               const RayPacket<8>&, vmask<8>, WideRef);
-template SurfacePacket<8> surface_at<8>(const Scene&, const RayPacket<8>&, const HitPacket<8>&,
-                                        vmask<8>);
-#endif
-#if XSIMD_WITH_AVX512F
-template HitPacket<16> intersect_closest<16>(const Scene&, const Accel&, const RayPacket<16>&,
-                                             vmask<16>, vint<16>*);
-template vmask<16> intersect_any<16>(const Scene&, const Accel&, const RayPacket<16>&, vmask<16>);
-template void intersect_object_closest_from<16>(const Scene&, const Accel&, uint32_t,
-                                                const RayPacket<16>&, vmask<16>, HitPacket<16>&,
-                                                WideRef);
-template vmask<16> intersect_object_any_from<16>(const Scene&, const Accel&, uint32_t,
-                                                 const RayPacket<16>&, vmask<16>, WideRef);
-template SurfacePacket<16> surface_at<16>(const Scene&, const RayPacket<16>&, const HitPacket<16>&,
-                                          vmask<16>);
 #endif
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -7,7 +7,7 @@
 #include "core/ray_packet.h"
 #include "scene/scene.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// The closest hit of each active lane in (t_min, t_max), with the scalar path's tie-break
 /// (smaller t, then object, then primitive). Inactive lanes come back as misses.
@@ -52,4 +52,4 @@ template <int W>
 SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
                             vmask<W> active);
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

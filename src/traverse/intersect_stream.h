@@ -8,7 +8,7 @@
 #include "core/ray_packet.h"
 #include "scene/scene.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Most rays one stream may hold (ray numbers times 8, the records' floats, stay in an int32).
 inline constexpr int64_t max_stream_rays = int64_t(1) << 28;
@@ -31,4 +31,4 @@ template <int W>
 void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
                           const vmask<W>* active, vmask<W>* occluded, int count);
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -15,7 +15,7 @@
 #include "traverse/hit_update_packet.h"
 #include "traverse/triangle_packet.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Triangles tested at once by one ray: 8 where the build has 8-wide vectors, else 4.
 inline constexpr int leaf_lanes = native_width < 8 ? native_width : 8;
@@ -193,4 +193,4 @@ template <int W>
     return found;
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

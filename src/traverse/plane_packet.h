@@ -7,7 +7,7 @@
 #include "scene/scene.h"
 #include "traverse/plane_scalar.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// Per lane, t in the open interval (t_min, t_max) where the ray meets the plane, or infinity
 /// (misses and inactive lanes). A ray parallel to the plane divides by zero (+-inf, or NaN when
@@ -26,4 +26,4 @@ inline vfloat<W> intersect_plane(const Plane& p, const RayPacket<W>& rays, vmask
     return select(hit, t, inf);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

@@ -5,7 +5,7 @@
 #include "core/ray_packet.h"
 #include "traverse/slab_scalar.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// W rays prepared for slab tests.
 template <int W>
@@ -46,4 +46,4 @@ inline vmask<W> intersect_slab(const SlabPacket<W>& r, vec3 lo, vec3 hi, const v
     return mask_and(t0 <= t1, active);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

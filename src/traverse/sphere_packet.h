@@ -6,7 +6,7 @@
 #include "scene/scene.h"
 #include "traverse/sphere_scalar.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 // ---- error-free transformations ---------------------------------------------------------------
 
@@ -131,4 +131,4 @@ inline vfloat<W> intersect_sphere(const Sphere& s, const RayPacket<W>& rays, vma
     return select(live, t, inf);
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

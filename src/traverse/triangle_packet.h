@@ -9,7 +9,7 @@
 #include "core/ray_packet.h"
 #include "traverse/triangle_scalar.h"
 
-namespace raylane {
+namespace raylane::RAYLANE_ISA_NS {
 
 /// W rays prepared for the watertight test. The axis permutation (kx, ky, kz) is per lane;
 /// when all lanes share it (coherent rays) `uniform` is set and kx, ky, kz hold it, so the
@@ -219,4 +219,4 @@ template <int W, class V>
     return hit;
 }
 
-}  // namespace raylane
+}  // namespace raylane::RAYLANE_ISA_NS

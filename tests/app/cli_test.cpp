@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/isa.h"
 #include "support/cli_run.h"
 #include "support/gzip.h"
 
@@ -20,6 +21,8 @@ namespace {
 using raylane::test::CliRun;
 using raylane::test::lines;
 using raylane::test::run;
+using raylane::test::run_command;
+using namespace raylane;  // Isa, isa_name, runnable_isas (core/isa.h)
 
 std::string temp_file(const std::string& name, const std::string& text) {
     const std::string path = (std::filesystem::temp_directory_path() / name).string();
@@ -36,13 +39,57 @@ TEST(Cli, HelpWorksForEveryCommand) {
     }
 }
 
-TEST(Cli, VersionNamesTheInstructionSetOfThePacketPath) {
+TEST(Cli, VersionNamesTheInstructionSetsCompiledRunnableAndInUse) {
     const CliRun r = run("--version");
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out.rfind("raylane ", 0), 0u) << r.out;
-    EXPECT_NE(r.out.find("packet path: "), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find(" rays per packet"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("sse4.2 avx2 avx512 (compiled)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" (this CPU), "), std::string::npos) << r.out;
+    const std::string widest = isa_name(runnable_isas().back());
+    EXPECT_NE(
+        r.out.find(widest + " in use (W = " + std::to_string(isa_width(runnable_isas().back()))),
+        std::string::npos)
+        << r.out;
     EXPECT_EQ(lines(r.out), 2u) << r.out;
+}
+
+TEST(Cli, IsaForcesEveryRunnableSetAndTheRenderSaysWhichItUsed) {
+    for (Isa isa : runnable_isas()) {
+        const std::string name = isa_name(isa);
+        const std::string png =
+            (std::filesystem::temp_directory_path() / "raylane_cli_isa.png").string();
+        const CliRun r = run("render --width 32 --isa " + name + " -o " + png);
+        EXPECT_EQ(r.code, 0) << r.err;
+        const std::string want =
+            "path       packet (" + name + ", W = " + std::to_string(isa_width(isa)) + ")";
+        EXPECT_NE(r.out.find(want), std::string::npos) << r.out;
+        const CliRun env = run_command("RAYLANE_ISA=" + name + " " RAYLANE_BINARY " info");
+        EXPECT_EQ(env.code, 0) << env.err;
+        EXPECT_NE(env.out.find(", " + name + " in use"), std::string::npos) << env.out;
+    }
+}
+
+TEST(Cli, UnknownOrUnrunnableIsaIsOneLineNamingTheRunnableSets) {
+    for (const std::string args : {"render --isa avx9", "info --isa neon"}) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.code, 2) << args;
+        EXPECT_EQ(lines(r.err), 1u) << r.err;
+        EXPECT_NE(r.err.find("--isa: unknown instruction set"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("this machine runs: " + runnable_isa_names()), std::string::npos)
+            << r.err;
+    }
+    const CliRun env = run_command("RAYLANE_ISA=mmx " RAYLANE_BINARY " info");
+    EXPECT_EQ(env.code, 2);
+    EXPECT_EQ(lines(env.err), 1u) << env.err;
+    EXPECT_NE(env.err.find("RAYLANE_ISA: unknown instruction set 'mmx'"), std::string::npos)
+        << env.err;
+    for (Isa isa : all_isas) {
+        if (cpu_runs(isa)) continue;  // on a CPU without AVX-512: the set it cannot run
+        const CliRun r = run(std::string("info --isa ") + isa_name(isa));
+        EXPECT_EQ(r.code, 2);
+        EXPECT_EQ(lines(r.err), 1u) << r.err;
+        EXPECT_NE(r.err.find("this CPU does not run"), std::string::npos) << r.err;
+    }
 }
 
 TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {

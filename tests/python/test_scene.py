@@ -88,7 +88,7 @@ def test_compare_gives_the_command_lines_metrics(bunny):
     assert lines["> 1/255"] == f"{d['pixels_over_1_255']} of {d['pixels']} pixels"
     assert lines["hit ids"] == f"{d['hit_id_mismatches']} of {d['pixels']} primary hits differ"
     assert lines["result"].startswith("agree" if d["agree"] else "DIFFER")
-    assert d["pixels"] == 64 * 36 and d["packet_width"] == raylane.packet_width
+    assert d["pixels"] == 64 * 36 and d["packet_width"] == raylane.instruction_sets()["packet_width"]
     assert d["scalar_ms"] > 0 and d["packet_ms"] > 0
 
 

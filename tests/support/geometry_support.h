@@ -18,6 +18,7 @@
 #include "scene/scene.h"
 #include "simd/simd.h"
 #include "support/ray_packets.h"
+#include "support/widths.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/triangle_scalar.h"
@@ -46,10 +47,10 @@ struct WidthList {
     }
 };
 
-/// f(Width<W>{}) for every packet width this build runs (1, 4, 8, 16 as the ISA allows).
+/// f(Width<W>{}) for every packet width the program tests (support/widths.h).
 template <class F>
 void for_each_width(F&& f) {
-    supported_widths<WidthList>::run(std::forward<F>(f));
+    tested_widths<WidthList>::run(std::forward<F>(f));
 }
 
 // ---- floats ------------------------------------------------------------------------------------

@@ -1,5 +1,7 @@
-// Test support: typed tests over every packet width this build runs (1, 4, 8, 16; without 1 in
-// builds configured with RAYLANE_TEST_WIDTHS=simd).
+// Test support: typed tests over the packet widths of the instruction set a test program is
+// compiled for: the widths that set's code runs (sse4.2: 4, avx2: 8, avx512: 16 and the 8-wide
+// leaf and node tests), and W = 1, the scalar width, in the sse4.2 program only (it does not
+// depend on the set).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -20,16 +22,13 @@ struct WidthName {
     }
 };
 
-/// ::testing::Types<Width<1>, Width<4>, ...> for TYPED_TEST_SUITE. Builds configured with
-/// RAYLANE_TEST_WIDTHS=simd (scripts/test_widths.sh) leave out W = 1, the scalar width, which
-/// does not depend on the instruction set and the release build tests.
-#if defined(RAYLANE_TEST_SIMD_WIDTHS_ONLY)
-using Widths =
-    std::conditional_t<width_supported<16>, ::testing::Types<Width<4>, Width<8>, Width<16>>,
-                       std::conditional_t<width_supported<8>, ::testing::Types<Width<4>, Width<8>>,
-                                          ::testing::Types<Width<4>>>>;
-#else
-using Widths = supported_widths<::testing::Types>;
-#endif
+/// The widths as List<Width<W>...>: ::testing::Types for TYPED_TEST_SUITE, or WidthList.
+template <template <class...> class List>
+using tested_widths = std::conditional_t<
+    native_width == 16, List<Width<8>, Width<16>>,
+    std::conditional_t<native_width == 8, List<Width<8>>, List<Width<1>, Width<native_width>>>>;
+
+/// ::testing::Types<Width<...>...> for TYPED_TEST_SUITE.
+using Widths = tested_widths<::testing::Types>;
 
 }  // namespace raylane

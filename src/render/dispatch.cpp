@@ -1,0 +1,28 @@
+// render: the packet renderer and the primary-hit comparison of the instruction set in use
+// (core/isa.h); each is compiled once per set (render_packet.cpp, primary_ids.cpp).
+#include "core/isa.h"
+#include "render/compare.h"
+#include "render/render_packet.h"
+
+#define RAYLANE_DECLARE(ns)                                                   \
+    namespace raylane {                                                       \
+    inline namespace ns {                                                     \
+    RenderResult render_packet_isa(const Scene& scene, const Accel& accel,    \
+                                   const RenderParams& params);               \
+    size_t primary_id_mismatches_isa(const Scene& scene, const Accel& accel); \
+    }                                                                         \
+    }
+RAYLANE_FOR_EACH_ISA(RAYLANE_DECLARE)
+#undef RAYLANE_DECLARE
+
+namespace raylane {
+
+RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderParams& params) {
+    RAYLANE_DISPATCH(render_packet_isa(scene, accel, params));
+}
+
+size_t primary_id_mismatches(const Scene& scene, const Accel& accel) {
+    RAYLANE_DISPATCH(primary_id_mismatches_isa(scene, accel));
+}
+
+}  // namespace raylane
