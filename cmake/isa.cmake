@@ -74,6 +74,13 @@ endfunction()
 # for the Python module).
 set_property(GLOBAL PROPERTY RAYLANE_ISA_OBJECT_LIBRARIES "")
 
+# GNU binutils for the partial link (ld.bfd: --force-group-allocation; Clang's toolchain may name
+# lld as CMAKE_LINKER) and the symbol edits
+find_program(RAYLANE_LD_BFD NAMES ld.bfd ld REQUIRED)
+find_program(RAYLANE_OBJCOPY NAMES objcopy REQUIRED)
+find_program(RAYLANE_NM NAMES nm REQUIRED)
+find_program(RAYLANE_OBJDUMP NAMES objdump REQUIRED)
+
 function(raylane_isa_objects name)
   set(outputs "")
   if(RAYLANE_SANITIZE)
@@ -95,8 +102,8 @@ function(raylane_isa_objects name)
     set_property(GLOBAL APPEND PROPERTY RAYLANE_ISA_OBJECT_LIBRARIES ${lib})
     set(out ${CMAKE_CURRENT_BINARY_DIR}/${lib}.o)
     add_custom_command(OUTPUT ${out}
-      COMMAND sh ${CMAKE_SOURCE_DIR}/cmake/isa_object.sh ${CMAKE_LINKER} ${CMAKE_OBJCOPY}
-              ${CMAKE_NM} ${CMAKE_OBJDUMP} ${ns} ${init_rule} ${out} "$<TARGET_OBJECTS:${lib}>"
+      COMMAND sh ${CMAKE_SOURCE_DIR}/cmake/isa_object.sh ${RAYLANE_LD_BFD} ${RAYLANE_OBJCOPY}
+              ${RAYLANE_NM} ${RAYLANE_OBJDUMP} ${ns} ${init_rule} ${out} "$<TARGET_OBJECTS:${lib}>"
       DEPENDS ${lib} "$<TARGET_OBJECTS:${lib}>" ${CMAKE_SOURCE_DIR}/cmake/isa_object.sh
       COMMENT "Linking the ${isa} objects of ${name} (only raylane::${ns} stays global)"
       COMMAND_EXPAND_LISTS VERBATIM)

@@ -6,6 +6,8 @@ packages=(cmake ninja-build g++ clang libclang-rt-14-dev libxsimd-dev libtbb-dev
           libopenexr-dev)
 # one frame over many processes (`mpirun ... raylane render`) and its tests
 packages+=(libopenmpi-dev openmpi-bin procps)
+# the packet tests on emulated CPUs without AVX-512 or AVX (qemu-user), and the instruction check
+packages+=(qemu-user binutils)
 # the Python module (python/), its tests and the examples of docs/python.md
 packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
 # Embree is only for the baseline benchmark; the renderer never links it.

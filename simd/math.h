@@ -40,18 +40,15 @@ inline PFloat<A> sqrt(const PFloat<A>& v) {
     return xsimd::sqrt(v);
 }
 
-/// cos and sin in radians: std:: at W = 1, xsimd's vectorised versions for packets (a few ulps
-/// from std::; used for sampling positions, never for hit decisions).
+/// cos and sin in radians: std:: lane by lane at every W (map_lanes below), so that every
+/// instruction set and both paths get the same bits (a vectorised approximation rounds
+/// differently with and without FMA).
 inline float cos(float v) { return std::cos(v); }
 template <class A>
-inline PFloat<A> cos(const PFloat<A>& v) {
-    return xsimd::cos(v);
-}
+inline PFloat<A> cos(const PFloat<A>& v);
 inline float sin(float v) { return std::sin(v); }
 template <class A>
-inline PFloat<A> sin(const PFloat<A>& v) {
-    return xsimd::sin(v);
-}
+inline PFloat<A> sin(const PFloat<A>& v);
 
 /// -v by flipping the sign bit, at every W: neg(+0) = -0, and NaN changes sign too.
 inline float neg(float v) { return -v; }
@@ -77,8 +74,8 @@ inline PMask<A> is_nan(const PFloat<A>& v) {
 // ---- lane by lane ---------------------------------------------------------------------------
 
 /// f (a scalar float function, e.g. std::cos) applied to every lane in turn: the scalar path's
-/// bits at every W, where a vector approximation (xsimd's cos, sin, atan2) would differ by ulps
-/// and move a sample across an edge. For rare, cheap-to-call uses (lens and disc samples).
+/// bits at every W and under every instruction set, where a vector approximation (xsimd's cos,
+/// sin, exp) rounds differently with and without FMA.
 template <class F>
 inline float map_lanes(float v, F f) {
     return f(v);
@@ -90,6 +87,15 @@ inline PFloat<A> map_lanes(const PFloat<A>& v, F f) {
     v.store_aligned(lanes);
     for (size_t i = 0; i < n; ++i) lanes[i] = f(lanes[i]);
     return PFloat<A>::load_aligned(lanes);
+}
+
+template <class A>
+inline PFloat<A> cos(const PFloat<A>& v) {
+    return map_lanes(v, [](float x) { return std::cos(x); });
+}
+template <class A>
+inline PFloat<A> sin(const PFloat<A>& v) {
+    return map_lanes(v, [](float x) { return std::sin(x); });
 }
 
 // ---- int32 arithmetic -----------------------------------------------------------------------
@@ -368,13 +374,16 @@ inline float hsum(const PFloat<A>& v, const PMask<A>& m) {
     return xsimd::hadd(select(m, v, PFloat<A>(0.0f)));
 }
 
-/// x^y for x > 0. W = 1 is std::pow; packets compute exp2(y log2 x) with xsimd's vectorised
-/// exp2 and log2 (relative error about |y log2 x| * 2^-23 from std::pow: compare with a
-/// tolerance). x = 0 gives 0 for y > 0.
+/// x^y: std::pow lane by lane at every W, the same bits under every instruction set and in both
+/// paths. x = 0 gives 0 for y > 0.
 inline float pow(float x, float y) { return std::pow(x, y); }
 template <class A>
 inline PFloat<A> pow(const PFloat<A>& x, const PFloat<A>& y) {
-    return xsimd::exp2(y * xsimd::log2(x));
+    constexpr size_t n = PFloat<A>::size;
+    alignas(64) float xs[n], ys[n];
+    x.store_aligned(xs), y.store_aligned(ys);
+    for (size_t i = 0; i < n; ++i) xs[i] = std::pow(xs[i], ys[i]);
+    return PFloat<A>::load_aligned(xs);
 }
 
 /// The unmasked forms: every lane counts.

@@ -1,5 +1,7 @@
 // Benchmarks of accel/build_median.cpp: the median-split BVH of the bunny, the dragon, and the
-// dragon subdivided to 400k and 1.6M triangles (how build time grows with n).
+// dragon subdivided to 400k and 1.6M triangles (how build time grows with n). The build's vector
+// loops run on the instruction set in use (support/isa_sets.h: RAYLANE_ISA, else the widest this
+// CPU runs); every set builds the same tree.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -13,6 +15,7 @@
 
 #include "accel/bvh.h"
 #include "io/load_mesh.h"
+#include "support/isa_sets.h"
 #include "support/summary.h"
 
 namespace raylane {
@@ -245,7 +248,8 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
         const std::optional<double> n = m.median_counter(repeated(i), "triangles");
         return n ? n : m.median_counter(first(i), "triangles");
     };
-    out << "Median-split build of the dragon, subdivided; median of the repetitions\n\n"
+    out << "Median-split build of the dragon, subdivided, on "
+        << bench::isa_label(bench::isa_in_use()) << "; median of the repetitions\n\n"
         << "| triangles | n log n, per 4x | repeated build | growth | growth, 95 % interval "
            "| first build of a process | growth |\n|---:|---:|---:|---:|---:|---:|---:|\n";
     // 4x steps of the repeated build measured, and those judged within / over n log n
@@ -300,5 +304,6 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
 }  // namespace raylane
 
 int main(int argc, char** argv) {
+    if (!raylane::bench::choose_isas(argv[0])) return 2;
     return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
 }

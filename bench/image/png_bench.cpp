@@ -11,6 +11,7 @@
 #include "image/film.h"
 #include "io/load_scene.h"
 #include "render/render_packet.h"
+#include "support/isa_sets.h"
 
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
@@ -102,4 +103,11 @@ BENCHMARK(BM_PngStbZlib)->ArgName("threads")->Arg(1)->Unit(benchmark::kMilliseco
 }  // namespace
 }  // namespace raylane
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    if (!raylane::bench::choose_isas(argv[0])) return 2;  // a RAYLANE_ISA it cannot use
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -98,14 +98,16 @@ def median_seconds(call, repeats=5):
     return statistics.median(times)
 
 
-def bench_intersect(bench, rays_file, mesh, threads, query):
-    """Median Mrays/s of each contender of bench_intersect --rays (5 repetitions)."""
+def bench_intersect(bench, rays_file, mesh, threads, query, isa):
+    """Median Mrays/s of each contender of bench_intersect --rays (5 repetitions) on the
+    instruction set `isa` (Raylane's and Embree's: RAYLANE_ISA)."""
     out = subprocess.run(
         [bench, "--rays", rays_file, "--mesh", mesh, "--benchmark_repetitions=5",
          "--benchmark_report_aggregates_only=true", "--benchmark_format=json",
-         f"--benchmark_filter=BM_RayFile_({query}_(Packet|Block|Stream|Embree.*)"
-         f"/threads:{threads}/|Build)"],
-        check=True, capture_output=True, text=True).stdout
+         f"--benchmark_filter=BM_RayFile_({query}_(Packet|Block|Stream|Embree[A-Za-z0-9]*)_"
+         f"[^/]+/threads:{threads}/|Build)"],
+        env=dict(os.environ, RAYLANE_ISA=isa), check=True, capture_output=True,
+        text=True).stdout
     rates, build_ms = {}, None
     for b in json.loads(out)["benchmarks"]:
         if b.get("aggregate_name") != "median":
@@ -161,7 +163,8 @@ def main():
                 else:
                     seconds = median_seconds(lambda: mesh.occluded(o, d))
                 python_rates.append(n / seconds * 1e-6)
-                rates, build_ms = bench_intersect(args.bench, rays_file, args.mesh, threads, query)
+                rates, build_ms = bench_intersect(args.bench, rays_file, args.mesh, threads, query,
+                                                  isa["in_use"])
                 if build_ms is not None:
                     build_cpp.append(build_ms)
                 cpp_rates.append(max(rates.get(k, 0.0) for k in ("Packet", "Block", "Stream")))

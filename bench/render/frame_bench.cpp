@@ -1,14 +1,18 @@
 // Benchmarks of render/: full frames of scenes/dragon.json (1920x1080, 1 sample, two point
-// lights with shadows), scalar and packet path, on 1 and 2 threads; the packet path also through
-// the binned SAH build (a comparison option, `--bvh sah`).
+// lights with shadows), scalar and packet path, on 1 and 2 threads; the packet path on every
+// instruction set raced (support/isa_sets.h), also through the binned SAH build (a comparison
+// option, `--bvh sah`).
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
+#include "core/isa.h"
 #include "io/load_scene.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "support/isa_sets.h"
 #include "support/summary.h"
 
 namespace raylane {
@@ -35,15 +39,17 @@ const Loaded* dragon_scene() {
     return loaded;
 }
 
-void frame(benchmark::State& state, bool packet, BvhBuild build = BvhBuild::median) {
+/// A frame on the scalar path, or with `packet` on the packet path of the set `isa`.
+void frame(benchmark::State& state, int threads, bool packet, Isa isa, BvhBuild build) {
     const Loaded* l = dragon_scene();
     if (!l) {
         state.SkipWithError("scenes/dragon.json or its model not found");
         return;
     }
+    use_isa(isa);
     const Accel& accel = build == BvhBuild::sah ? l->accel_sah : l->accel;
     RenderParams params;
-    params.threads = static_cast<int>(state.range(0));
+    params.threads = threads;
     uint64_t rays = 0;
     for (auto _ : state) {
         RenderResult r = packet ? render_packet(l->scene, accel, params)
@@ -55,53 +61,60 @@ void frame(benchmark::State& state, bool packet, BvhBuild build = BvhBuild::medi
         benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
 }
 
-void BM_Frame_Scalar(benchmark::State& state) { frame(state, false); }
-void BM_Frame_Packet(benchmark::State& state) { frame(state, true); }
-void BM_Frame_PacketSah(benchmark::State& state) { frame(state, true, BvhBuild::sah); }
+/// BM_Frame_Scalar/threads:1 (on the set in use), and per set raced BM_Frame_Packet_avx2/
+/// threads:1 and BM_Frame_PacketSah_avx2/threads:1 (through the binned SAH build).
+void register_all() {
+    for (int threads : {1, 2}) {
+        auto add = [&](const std::string& name, bool packet, Isa isa, BvhBuild build) {
+            benchmark::RegisterBenchmark(
+                ("BM_Frame_" + name + "/threads:" + std::to_string(threads)).c_str(), frame,
+                threads, packet, isa, build)
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
+        };
+        add("Scalar", false, bench::isa_in_use(), BvhBuild::median);
+        for (Isa isa : bench::raced_isas()) {
+            add(std::string("Packet_") + isa_name(isa), true, isa, BvhBuild::median);
+            add(std::string("PacketSah_") + isa_name(isa), true, isa, BvhBuild::sah);
+        }
+    }
+}
 
-BENCHMARK(BM_Frame_Scalar)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_Frame_Packet)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_Frame_PacketSah)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-
-/// `--summary`: the frame's medians, the packet path's speed-up over the scalar path (scalar
-/// time / packet time), and the frame's target (< 30 ms on 2 threads).
+/// `--summary`: the frame's medians per set, the packet path's speed-up over the scalar path
+/// (scalar time / packet time), and the frame's target (< 30 ms on 2 threads) on the set in use.
 void print_summary(const bench::Measured& m, std::ostream& out) {
-    auto ms = [&](const char* path, int threads) {
-        return m.median_ms(std::string("BM_Frame_") + path + "/threads:" + std::to_string(threads) +
+    auto ms = [&](const std::string& path, int threads) {
+        return m.median_ms("BM_Frame_" + path + "/threads:" + std::to_string(threads) +
                            "/real_time");
     };
+    auto packet = [&](Isa isa, int threads) {
+        return ms(std::string("Packet_") + isa_name(isa), threads);
+    };
     out << "scenes/dragon.json, 1920x1080, 1 sample; median of the repetitions\n\n"
-        << "| threads | scalar | packet | packet, SAH | packet speed-up |\n"
-        << "|---:|---:|---:|---:|---:|\n";
-    for (int threads : {1, 2})
-        out << "| " << threads << " | " << bench::figure_text(ms("Scalar", threads), "%.1f ms")
-            << " | " << bench::figure_text(ms("Packet", threads), "%.1f ms") << " | "
-            << bench::figure_text(ms("PacketSah", threads), "%.1f ms") << " | "
-            << bench::ratio_text(ms("Scalar", threads), ms("Packet", threads)) << " |\n";
-    const std::optional<double> frame = ms("Packet", 2);
-    out << "\nTarget:\n- dragon frame, packet path, 2 threads < 30 ms: "
-        << bench::verdict_below(frame, 30.0) << " (" << bench::figure_text(frame, "%.1f ms")
-        << ")\n";
+        << "| instruction set | threads | scalar | packet | packet, SAH | packet speed-up |\n"
+        << "|---|---:|---:|---:|---:|---:|\n";
+    for (Isa isa : bench::raced_isas())
+        for (int threads : {1, 2})
+            out << "| " << bench::isa_label(isa) << " | " << threads << " | "
+                << bench::figure_text(ms("Scalar", threads), "%.1f ms") << " | "
+                << bench::figure_text(packet(isa, threads), "%.1f ms") << " | "
+                << bench::figure_text(ms(std::string("PacketSah_") + isa_name(isa), threads),
+                                      "%.1f ms")
+                << " | " << bench::ratio_text(ms("Scalar", threads), packet(isa, threads))
+                << " |\n";
+    bench::print_isas_not_raced(out);
+    const Isa in_use = bench::isa_in_use();
+    const std::optional<double> frame = packet(in_use, 2);
+    out << "\nTarget, on the set `raylane` uses here, " << bench::isa_label(in_use) << ":\n"
+        << "- dragon frame, packet path, 2 threads < 30 ms: " << bench::verdict_below(frame, 30.0)
+        << " (" << bench::figure_text(frame, "%.1f ms") << ")\n";
 }
 
 }  // namespace
 }  // namespace raylane
 
 int main(int argc, char** argv) {
+    if (!raylane::bench::choose_isas(argv[0])) return 2;
+    raylane::register_all();
     return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
 }

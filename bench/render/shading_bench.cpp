@@ -1,7 +1,8 @@
 // Benchmarks of the shading features: for scenes that use few and many features, the scalar
 // path, the packet path with the kernel specialised to the scene's features, and the packet
 // path with the all-features kernel. On 1 and 2 threads (the argument); the report figures at 320
-// pixels wide.
+// pixels wide. The packet path runs on the instruction set in use (RAYLANE_ISA, else the widest
+// this CPU runs).
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -10,6 +11,7 @@
 #include "io/load_scene.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "support/isa_sets.h"
 
 namespace raylane {
 namespace {
@@ -95,4 +97,11 @@ RAYLANE_SHADING_BENCH(MirrorSpheres, "fig08b_dof_middle.json", 320)
 }  // namespace
 }  // namespace raylane
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    if (!raylane::bench::choose_isas(argv[0])) return 2;  // a RAYLANE_ISA it cannot use
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -136,8 +136,7 @@ int run_benchmarks(int argc, char** argv, Summary summary) {
             if (table.str().find("—") != std::string::npos)
                 std::cout << "\n— marks a figure whose benchmark did not run: left out by "
                              "--benchmark_filter, or a contender this build lacks (Embree, when "
-                             "libembree-dev is not installed; a packet width the CPU does not "
-                             "run).\n";
+                             "libembree-dev is not installed).\n";
         }
     } else {
         benchmark::RunSpecifiedBenchmarks();

@@ -5,8 +5,11 @@
 // lights in the renderer's order (per tile and light, one packet per 4x4 pixels, inactive slots
 // where the primary ray missed or the point faces away from the light), and one
 // cosine-distributed bounce ray per hit (incoherent).
-// Contenders: Raylane scalar, Raylane packet at every width, and Embree 3 (rtcIntersect1 / 1M / 16,
-// rtcOccluded1 / 16) when it is installed. 1 and 2 threads (oneTBB; chunks of 256 rays).
+// Contenders: Raylane scalar; for every instruction set raced (bench/support/isa_sets.h),
+// Raylane's packet contenders at the set's width (intersect_bench_packet.cpp: Packet4, Block8,
+// Stream16, ...) and Embree 3 restricted to the same set (rtcNewDevice "isa=avx2"; rtcIntersect1
+// / 1M / 16, rtcOccluded1 / 16; Embree16_avx2, ...) when it is installed. 1 and 2 threads
+// (oneTBB; chunks of 256 rays).
 // With `--rays FILE.npy [--mesh MODEL] [--embree-hits OUT.npy]`: a ray file instead
 // (traverse/ray_file_runs.h).
 #include <benchmark/benchmark.h>
@@ -25,31 +28,40 @@
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
 #include "render/tiles.h"
+#include "support/isa_sets.h"
 #include "support/summary.h"
-#include "traverse/intersect_block.h"
-#include "traverse/intersect_packet.h"
+#include "traverse/intersect_contenders.h"
 #include "traverse/intersect_scalar.h"
-#include "traverse/intersect_stream.h"
 #include "traverse/ray_file_runs.h"
 
 #ifdef RAYLANE_HAVE_EMBREE
-#include <embree3/rtcore.h>
+#include "traverse/embree_scene.h"
 #endif
 
-namespace raylane {
+// each set's packet contenders (intersect_bench_packet.cpp)
+#define RAYLANE_DECLARE(ns)                                            \
+    namespace raylane {                                                \
+    inline namespace ns {                                              \
+    std::vector<bench::PacketContender> intersect_packet_contenders(); \
+    }                                                                  \
+    }
+RAYLANE_FOR_EACH_ISA(RAYLANE_DECLARE)
+#undef RAYLANE_DECLARE
+
+namespace raylane::bench {
 namespace {
 
-constexpr size_t chunk = 256;          // rays per task
-constexpr size_t stream_rays = 16384;  // rays per task and stream of the Stream contender
-constexpr size_t tile_rays = 256;      // primary rays per 16x16 tile
-
-/// A ray set in SoA form, padded with inactive rays (t_max = -1) to a multiple of `chunk`, so
-/// every contender reads its rays without repacking (as a renderer generating them would).
-struct RaySoa {
-    size_t size = 0;          ///< real rays; the padding follows
-    std::vector<float> c[8];  ///< org x y z, dir x y z, t_min, t_max
-    const float* at(int k, size_t i) const { return c[k].data() + i; }
-};
+/// The packet contenders of a set, at its width.
+std::vector<PacketContender> packet_contenders(Isa isa) {
+    switch (isa) {
+        RAYLANE_IF_SSE42(case Isa::sse42 : return isa_sse42::intersect_packet_contenders();)
+        RAYLANE_IF_AVX2(case Isa::avx2 : return isa_avx2::intersect_packet_contenders();)
+        RAYLANE_IF_AVX512(case Isa::avx512 : return isa_avx512::intersect_packet_contenders();)
+        default:
+            break;
+    }
+    return {};
+}
 
 RaySoa make_soa(const std::vector<Ray>& rays) {
     RaySoa s;
@@ -72,8 +84,7 @@ struct Workload {
     std::vector<Ray> primary, shadow, bounce;
     RaySoa primary_soa, shadow_soa, bounce_soa;
 #ifdef RAYLANE_HAVE_EMBREE
-    RTCDevice device = nullptr;
-    RTCScene rtc_scene = nullptr;
+    std::map<Isa, RTCScene> rtc_scenes;  ///< the meshes in Embree, per set (embree_scene)
 #endif
 };
 
@@ -94,25 +105,11 @@ std::vector<Ray> primary_rays(const Camera& cam) {
 }
 
 #ifdef RAYLANE_HAVE_EMBREE
-void build_embree(Workload& w) {
-    w.device = rtcNewDevice(nullptr);
-    w.rtc_scene = rtcNewScene(w.device);
-    for (const Mesh& mesh : w.scene.meshes) {
-        RTCGeometry g = rtcNewGeometry(w.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                              RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                              mesh.positions.size()));
-        for (size_t i = 0; i < mesh.positions.size(); ++i)
-            for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.positions[i][k];
-        auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.tris.size()));
-        for (size_t i = 0; i < mesh.tris.size(); ++i)
-            for (int k = 0; k < 3; ++k) idx[3 * i + k] = mesh.tris[i][k];
-        rtcCommitGeometry(g);
-        rtcAttachGeometry(w.rtc_scene, g);
-        rtcReleaseGeometry(g);
-    }
-    rtcCommitScene(w.rtc_scene);
+/// The workload's meshes in Embree on the set's device, built on first use.
+RTCScene embree_scene(Workload& w, Isa isa) {
+    RTCScene& scene = w.rtc_scenes[isa];
+    if (!scene) scene = make_embree_scene(isa, w.scene.meshes);
+    return scene;
 }
 #endif
 
@@ -142,7 +139,7 @@ Workload* workload(const std::string& name) {
     // that lights a point of it, a block of 16 packets, one per 4x4-pixel packet of primary rays,
     // a ray where the primary ray hit a point facing the light and an inactive slot (t_max = -1)
     // elsewhere (the bottom row's tiles are 16x8: two of them make a block)
-    static_assert(tile_rays == size_t(max_block_rays) && chunk % tile_rays == 0);
+    static_assert(chunk % tile_rays == 0);
     for (size_t tile = 0; tile < w->primary.size(); tile += tile_rays) {
         const size_t n = std::min(tile_rays, w->primary.size() - tile);
         std::vector<vec3> from(tile_rays), normal(tile_rays);
@@ -188,9 +185,6 @@ Workload* workload(const std::string& name) {
     w->primary_soa = make_soa(w->primary);
     w->shadow_soa = make_soa(w->shadow);
     w->bounce_soa = make_soa(w->bounce);
-#ifdef RAYLANE_HAVE_EMBREE
-    build_embree(*w);
-#endif
     return (cache[name] = std::move(w)).get();
 }
 
@@ -201,24 +195,12 @@ const RaySoa& soa_of(const Workload& w, const std::string& set) {
     return set == "primary" ? w.primary_soa : set == "shadow" ? w.shadow_soa : w.bounce_soa;
 }
 
-/// Packet of rays i .. i + W - 1 straight from the SoA arrays; padding lanes are inactive.
-template <int W>
-RayPacket<W> load_packet(const RaySoa& s, size_t i, vmask<W>& active) {
-    RayPacket<W> p;
-    p.org = load_vec3<W>(s.at(0, i), s.at(1, i), s.at(2, i));
-    p.dir = load_vec3<W>(s.at(3, i), s.at(4, i), s.at(5, i));
-    p.t_min = load<W>(s.at(6, i));
-    p.t_max = load<W>(s.at(7, i));
-    active = p.t_max >= p.t_min;
-    return p;
-}
-
 /// Whether a ray is a real one (a shadow packet's slots where the primary ray missed are not).
 bool active_ray(const Ray& r) { return r.t_max >= r.t_min; }
 
-/// Runs body(first, last) over the rays in chunks on `threads` threads; counts the real rays per
-/// second. Chunks cover the padded SoA arrays; the scalar and AoS contenders stop at the last ray
-/// and skip inactive slots.
+/// Runs body(first, last) over the rays in tasks of `rays_per_task` on `threads` threads; counts
+/// the real rays per second. Tasks cover the padded SoA arrays; the scalar and AoS contenders
+/// stop at the last ray and skip inactive slots.
 template <class Body>
 void run(benchmark::State& state, const std::vector<Ray>& rays, int threads, Body&& body,
          size_t rays_per_task = chunk) {
@@ -254,96 +236,26 @@ void bench_scalar(benchmark::State& state, std::string scene, std::string set, i
     });
 }
 
-template <int W>
-void bench_packet(benchmark::State& state, std::string scene, std::string set, int threads,
-                  BvhBuild build) {
+/// A set's packet contender (its code calls the set's functions directly).
+void bench_packet(benchmark::State& state, PacketContender c, std::string scene, std::string set,
+                  int threads) {
     Workload* w = workload(scene);
     if (!w) return state.SkipWithError("scene or model not found");
-    const Accel& accel = build == BvhBuild::sah ? w->accel_sah : w->accel;
-    const std::vector<Ray>& rays = rays_of(*w, set);
-    const bool any_hit = set == "shadow";
-    const RaySoa& soa = soa_of(*w, set);
-    run(state, rays, threads, [&](size_t first, size_t last) {
-        for (size_t i = first; i < last; i += W) {
-            vmask<W> active;
-            const RayPacket<W> p = load_packet<W>(soa, i, active);
-            if (none(active)) continue;  // a shadow packet whose primary rays all missed
-            if (any_hit) {
-                benchmark::DoNotOptimize(intersect_any(w->scene, accel, p, active));
-            } else {
-                HitPacket<W> h = intersect_closest(w->scene, accel, p, active);
-                benchmark::DoNotOptimize(h);
-            }
-        }
-    });
-}
-
-/// Blocks of max_block_rays consecutive rays (a 16x16 tile for the primary rays).
-template <int W>
-void bench_block(benchmark::State& state, std::string scene, std::string set, int threads,
-                 BvhBuild build) {
-    Workload* w = workload(scene);
-    if (!w) return state.SkipWithError("scene or model not found");
-    const Accel& accel = build == BvhBuild::sah ? w->accel_sah : w->accel;
-    const std::vector<Ray>& rays = rays_of(*w, set);
-    const bool any_hit = set == "shadow";
-    static_assert(chunk % max_block_rays == 0);
-    const RaySoa& soa = soa_of(*w, set);
-    run(state, rays, threads, [&](size_t first, size_t last) {
-        constexpr int per_block = max_block_rays / W;
-        RayPacket<W> p[per_block];
-        vmask<W> active[per_block], occluded[per_block];
-        HitPacket<W> hits[per_block];
-        for (size_t b = first; b < last; b += max_block_rays) {  // chunks hold whole blocks
-            int count = 0;
-            for (size_t i = b; i < b + max_block_rays; i += W, ++count)
-                p[count] = load_packet<W>(soa, i, active[count]);
-            if (any_hit) {
-                intersect_any_block(w->scene, accel, p, active, occluded, count);
-                benchmark::DoNotOptimize(occluded[0]);
-            } else {
-                intersect_closest_block(w->scene, accel, p, active, hits, count);
-                benchmark::DoNotOptimize(hits[0]);
-            }
-        }
-    });
-}
-
-/// Streams of stream_rays consecutive rays through intersect_closest_stream /
-/// intersect_any_stream.
-template <int W>
-void bench_stream(benchmark::State& state, std::string scene, std::string set, int threads) {
-    Workload* w = workload(scene);
-    if (!w) return state.SkipWithError("scene or model not found");
-    const std::vector<Ray>& rays = rays_of(*w, set);
+    const Accel& accel = c.build == BvhBuild::sah ? w->accel_sah : w->accel;
     const RaySoa& soa = soa_of(*w, set);
     const bool any_hit = set == "shadow";
     run(
-        state, rays, threads,
-        [&](size_t first, size_t last) {
-            thread_local std::vector<RayPacket<W>> p;
-            thread_local std::vector<vmask<W>> active, occluded;
-            thread_local std::vector<HitPacket<W>> hits;
-            const size_t count = (last - first) / W;
-            p.resize(count), active.resize(count), occluded.resize(count), hits.resize(count);
-            for (size_t k = 0; k < count; ++k) p[k] = load_packet<W>(soa, first + k * W, active[k]);
-            if (any_hit) {
-                intersect_any_stream(w->scene, w->accel, p.data(), active.data(), occluded.data(),
-                                     int(count));
-                benchmark::DoNotOptimize(occluded[0]);
-            } else {
-                intersect_closest_stream(w->scene, w->accel, p.data(), active.data(), hits.data(),
-                                         int(count));
-                benchmark::DoNotOptimize(hits[0]);
-            }
-        },
-        stream_rays);
+        state, rays_of(*w, set), threads,
+        [&](size_t first, size_t last) { c.trace(w->scene, accel, soa, any_hit, first, last); },
+        c.rays_per_task);
 }
 
 #ifdef RAYLANE_HAVE_EMBREE
-void bench_embree1(benchmark::State& state, std::string scene, std::string set, int threads) {
+void bench_embree1(benchmark::State& state, Isa isa, std::string scene, std::string set,
+                   int threads) {
     Workload* w = workload(scene);
     if (!w) return state.SkipWithError("scene or model not found");
+    const RTCScene rtc_scene = embree_scene(*w, isa);
     const std::vector<Ray>& rays = rays_of(*w, set);
     const bool any_hit = set == "shadow";
     run(state, rays, threads, [&](size_t first, size_t last) {
@@ -358,10 +270,10 @@ void bench_embree1(benchmark::State& state, std::string scene, std::string set, 
                       r.dir.z, 0.0f,    r.t_max, ~0u,     0u,      0u};
             rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             if (any_hit) {
-                rtcOccluded1(w->rtc_scene, &ctx, &rh.ray);
+                rtcOccluded1(rtc_scene, &ctx, &rh.ray);
                 sum += rh.ray.tfar < 0.0f;
             } else {
-                rtcIntersect1(w->rtc_scene, &ctx, &rh);
+                rtcIntersect1(rtc_scene, &ctx, &rh);
                 sum += rh.hit.primID;
             }
         }
@@ -369,10 +281,12 @@ void bench_embree1(benchmark::State& state, std::string scene, std::string set, 
     });
 }
 
-void bench_embree16(benchmark::State& state, std::string scene, std::string set, int threads,
-                    bool stream) {
+/// Embree16 (rtcIntersect16 / rtcOccluded16), or with `stream` Embree1M (rtcIntersect1M).
+void bench_embree16(benchmark::State& state, Isa isa, bool stream, std::string scene,
+                    std::string set, int threads) {
     Workload* w = workload(scene);
     if (!w) return state.SkipWithError("scene or model not found");
+    const RTCScene rtc_scene = embree_scene(*w, isa);
     const std::vector<Ray>& rays = rays_of(*w, set);
     const bool any_hit = set == "shadow";
     run(state, rays, threads, [&](size_t first, size_t last) {
@@ -389,7 +303,7 @@ void bench_embree16(benchmark::State& state, std::string scene, std::string set,
                              r.dir.z, 0.0f,    r.t_max, ~0u,     0u,      0u};
                 rh[k].hit.geomID = RTC_INVALID_GEOMETRY_ID;
             }
-            rtcIntersect1M(w->rtc_scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
+            rtcIntersect1M(rtc_scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
             benchmark::DoNotOptimize(rh[0].hit.primID);
             return;
         }
@@ -414,48 +328,18 @@ void bench_embree16(benchmark::State& state, std::string scene, std::string set,
             }
             if (!any_valid) continue;  // a shadow packet whose primary rays all missed
             if (any_hit)
-                rtcOccluded16(valid, w->rtc_scene, &ctx, &rh.ray);
+                rtcOccluded16(valid, rtc_scene, &ctx, &rh.ray);
             else
-                rtcIntersect16(valid, w->rtc_scene, &ctx, &rh);
+                rtcIntersect16(valid, rtc_scene, &ctx, &rh);
             benchmark::DoNotOptimize(rh.hit.primID[0]);
         }
     });
 }
 #endif
 
-/// Packet<W>, or Packet<W>Sah through the binned SAH build.
-template <int W>
-void register_packet(const std::string& scene, const std::string& set, int threads,
-                     BvhBuild build = BvhBuild::median) {
-    const std::string suffix = (build == BvhBuild::sah ? "Sah/" : "/") + scene + "/" + set +
-                               "/threads:" + std::to_string(threads);
-    benchmark::RegisterBenchmark(("BM_Intersect_Packet" + std::to_string(W) + suffix).c_str(),
-                                 bench_packet<W>, scene, set, threads, build)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
-}
-
-/// Block<W>, or Block<W>Sah through the binned SAH build.
-template <int W>
-void register_block(const std::string& scene, const std::string& set, int threads,
-                    BvhBuild build = BvhBuild::median) {
-    const std::string suffix = (build == BvhBuild::sah ? "Sah/" : "/") + scene + "/" + set +
-                               "/threads:" + std::to_string(threads);
-    benchmark::RegisterBenchmark(("BM_Intersect_Block" + std::to_string(W) + suffix).c_str(),
-                                 bench_block<W>, scene, set, threads, build)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
-}
-
-/// Stream<W>: intersect_closest_stream, or intersect_any_stream for shadow rays, on stream_rays
-/// rays at a time (one task each: 15 tasks for the dragon's bounce rays, 2 threads).
-template <int W>
-void register_stream(const std::string& scene, const std::string& set, int threads) {
-    const std::string suffix = "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
-    benchmark::RegisterBenchmark(("BM_Intersect_Stream" + std::to_string(W) + suffix).c_str(),
-                                 bench_stream<W>, scene, set, threads)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
+/// The name of an Embree contender on a set: "Embree16_avx2".
+std::string embree_name(const char* api, Isa isa) {
+    return std::string("Embree") + api + "_" + isa_name(isa);
 }
 
 void register_all() {
@@ -464,132 +348,126 @@ void register_all() {
             for (int threads : {1, 2}) {
                 const std::string suffix =
                     "/" + scene + "/" + set + "/threads:" + std::to_string(threads);
-                benchmark::RegisterBenchmark(("BM_Intersect_Scalar" + suffix).c_str(), bench_scalar,
-                                             scene, set, threads)
-                    ->Unit(benchmark::kMillisecond)
-                    ->UseRealTime();
-                register_packet<1>(scene, set, threads);
-                if constexpr (width_supported<4>) register_packet<4>(scene, set, threads);
-                if constexpr (width_supported<8>) register_packet<8>(scene, set, threads);
-                if constexpr (width_supported<16>) register_packet<16>(scene, set, threads);
-                if constexpr (width_supported<8>) register_block<8>(scene, set, threads);
-                if constexpr (width_supported<16>) register_block<16>(scene, set, threads);
-                // streams at the widest width
-                if constexpr (width_supported<16>)
-                    register_stream<16>(scene, set, threads);
-                else if constexpr (width_supported<8>)
-                    register_stream<8>(scene, set, threads);
-                // the widest packets and blocks again through the SAH build (a comparison
-                // option: the rays are the same, the tree is not the report's)
-                if constexpr (width_supported<16>) {
-                    register_packet<16>(scene, set, threads, BvhBuild::sah);
-                    register_block<16>(scene, set, threads, BvhBuild::sah);
-                } else if constexpr (width_supported<8>) {
-                    register_packet<8>(scene, set, threads, BvhBuild::sah);
-                    register_block<8>(scene, set, threads, BvhBuild::sah);
-                }
-#ifdef RAYLANE_HAVE_EMBREE
-                benchmark::RegisterBenchmark(("BM_Intersect_Embree1" + suffix).c_str(),
-                                             bench_embree1, scene, set, threads)
-                    ->Unit(benchmark::kMillisecond)
-                    ->UseRealTime();
-                benchmark::RegisterBenchmark(("BM_Intersect_Embree16" + suffix).c_str(),
-                                             bench_embree16, scene, set, threads, false)
-                    ->Unit(benchmark::kMillisecond)
-                    ->UseRealTime();
-                if (set != "shadow")
-                    benchmark::RegisterBenchmark(("BM_Intersect_Embree1M" + suffix).c_str(),
-                                                 bench_embree16, scene, set, threads, true)
+                auto add = [&](const std::string& contender, auto&&... args) {
+                    benchmark::RegisterBenchmark(("BM_Intersect_" + contender + suffix).c_str(),
+                                                 args..., scene, set, threads)
                         ->Unit(benchmark::kMillisecond)
                         ->UseRealTime();
+                };
+                add("Scalar", bench_scalar);
+                for (Isa isa : raced_isas()) {
+                    for (const PacketContender& c : packet_contenders(isa))
+                        add(c.name, bench_packet, c);
+#ifdef RAYLANE_HAVE_EMBREE
+                    add(embree_name("1", isa), bench_embree1, isa);
+                    add(embree_name("16", isa), bench_embree16, isa, false);
+                    if (set != "shadow") add(embree_name("1M", isa), bench_embree16, isa, true);
 #endif
+                }
             }
         }
     }
 }
 
-/// `--summary`: Mrays/s (median of the repetitions) of every contender per model, ray kind and
-/// thread count, as a Markdown table, and the ratios the targets are set on: the best Raylane
-/// packet contender (Packet4/8/16, Block8/16, Stream8/16: the median-split tree) over the scalar
-/// path and over Embree's best API; the SAH contenders over Embree's best. The target against
-/// Embree is judged only when every Embree API of that ray kind was run.
-void print_summary(const bench::Measured& m, std::ostream& out) {
-    const char* contenders[] = {"Scalar",      "Packet4",    "Packet8",  "Packet16",   "Block8",
-                                "Block16",     "Stream8",    "Stream16", "Packet8Sah", "Block8Sah",
-                                "Packet16Sah", "Block16Sah", "Embree1",  "Embree16",   "Embree1M"};
+/// `--summary`: Mrays/s (median of the repetitions) of every contender, one table per model and
+/// instruction set, by ray kind and thread count, and the ratios the targets are set on: the
+/// best of the set's packet contenders (Packet<W>, Block<W>, Stream<W>: the median-split tree)
+/// over the scalar path and over Embree's best API on the same set; the SAH contenders over
+/// Embree's best. The target against Embree is judged only when every Embree API of that ray
+/// kind was run.
+void print_summary(const Measured& m, std::ostream& out) {
     const char* kinds[3] = {"primary", "shadow", "bounce"};
     const double over_embree[3] = {1.6, 1.2, 1.3};  // targets, by kind
     const double over_scalar[3] = {4.0, 0.0, 1.0};  // (none for shadow rays)
-    auto rate = [&](const char* c, const char* model, const char* kind, int threads) {
+    auto rate = [&](const std::string& c, const char* model, const char* kind, int threads) {
         const std::optional<double> r =
-            m.median_counter(std::string("BM_Intersect_") + c + "/" + model + "/" + kind +
+            m.median_counter("BM_Intersect_" + c + "/" + model + "/" + kind +
                                  "/threads:" + std::to_string(threads) + "/real_time",
                              "rays/s");
         return r ? std::optional<double>(*r * 1e-6) : std::nullopt;
     };
-    out << "Mrays/s, median of the repetitions; packet = the best of Packet4/8/16, Block8/16 and "
-           "Stream8/16\n";
+    out << "Mrays/s, median of the repetitions; one table per model and instruction set: packet "
+           "= the best of Packet<W>, Block<W> and Stream<W> at the set's width W, SAH = the best "
+           "of Packet<W>Sah and Block<W>Sah, Embree restricted to the same set "
+           "(rtcNewDevice \"isa=<set>\")\n";
     for (const char* model : {"dragon", "bunny"}) {
-        std::vector<const char*> shown;
-        for (const char* c : contenders) {
-            bool ran = false;
-            for (const char* kind : kinds)
-                for (int threads : {1, 2}) ran = ran || rate(c, model, kind, threads);
-            if (ran) shown.push_back(c);
-        }
-        if (shown.empty()) continue;
-        out << "\n| " << model << " |";
-        for (const char* c : shown) out << " " << c << " |";
-        out << " packet / scalar | packet / Embree's best | SAH / Embree's best | targets |\n|---|";
-        for (size_t i = 0; i < shown.size() + 4; ++i) out << "---:|";
-        out << "\n";
-        for (int k = 0; k < 3; ++k) {
-            for (int threads : {1, 2}) {
-                auto r = [&](const char* c) { return rate(c, model, kinds[k], threads); };
-                bool ran = false;
-                for (const char* c : shown) ran = ran || r(c);
-                if (!ran) continue;
-                out << "| " << kinds[k] << ", " << threads
-                    << (threads == 1 ? " thread" : " threads") << " |";
-                for (const char* c : shown) {
-                    const std::optional<double> v = r(c);
-                    out << " " << bench::figure_text(v, v && *v >= 100.0 ? "%.0f" : "%.3g") << " |";
+        for (Isa isa : raced_isas()) {
+            // the columns: Scalar, the set's contenders and Embree's APIs on the set, those run
+            std::vector<std::string> names, packet_names, sah_names;
+            for (const PacketContender& c : packet_contenders(isa)) {
+                names.push_back(c.name);
+                (c.build == BvhBuild::sah ? sah_names : packet_names).push_back(c.name);
+            }
+            const std::string embree1 = embree_name("1", isa), embree16 = embree_name("16", isa),
+                              embree1m = embree_name("1M", isa);
+            names.insert(names.end(), {embree1, embree16, embree1m});
+            auto ran = [&](const std::string& c) {
+                for (const char* kind : kinds)
+                    for (int threads : {1, 2})
+                        if (rate(c, model, kind, threads)) return true;
+                return false;
+            };
+            std::vector<std::string> shown;
+            for (const std::string& c : names)
+                if (ran(c)) shown.push_back(c);
+            if (shown.empty()) continue;  // none of this set's contenders ran on the model
+            if (ran("Scalar")) shown.insert(shown.begin(), "Scalar");
+            out << "\n| " << model << ", " << isa_label(isa) << " |";
+            for (const std::string& c : shown) out << " " << c.substr(0, c.find('_')) << " |";
+            out << " packet / scalar | packet / Embree's best | SAH / Embree's best | targets "
+                   "|\n|---|";
+            for (size_t i = 0; i < shown.size() + 4; ++i) out << "---:|";
+            out << "\n";
+            for (int k = 0; k < 3; ++k) {
+                for (int threads : {1, 2}) {
+                    auto r = [&](const std::string& c) {
+                        return rate(c, model, kinds[k], threads);
+                    };
+                    auto best = [&](const std::vector<std::string>& cs) {
+                        std::vector<std::optional<double>> rates;
+                        for (const std::string& c : cs) rates.push_back(r(c));
+                        return best_of(rates);
+                    };
+                    bool row_ran = false;
+                    for (const std::string& c : shown) row_ran = row_ran || r(c);
+                    if (!row_ran) continue;
+                    out << "| " << kinds[k] << ", " << threads
+                        << (threads == 1 ? " thread" : " threads") << " |";
+                    for (const std::string& c : shown) {
+                        const std::optional<double> v = r(c);
+                        out << " " << figure_text(v, v && *v >= 100.0 ? "%.0f" : "%.3g") << " |";
+                    }
+                    const auto packet = best(packet_names), sah = best(sah_names);
+                    const bool every_embree =
+                        r(embree1) && r(embree16) && (k == 1 || r(embree1m));  // no 1M shadow
+                    const auto embree = best({embree1, embree16, embree1m});
+                    out << " " << ratio_text(packet, r("Scalar")) << " | "
+                        << ratio_text(packet, embree) << " | " << ratio_text(sah, embree) << " | "
+                        << figure_text(over_embree[k], "%.1fx") << " Embree's best: "
+                        << verdict(every_embree ? divide(packet, embree) : std::nullopt,
+                                   over_embree[k]);
+                    if (over_scalar[k] > 0.0)
+                        out << "; " << figure_text(over_scalar[k], "%.0fx")
+                            << " scalar: " << verdict(divide(packet, r("Scalar")), over_scalar[k]);
+                    out << " |\n";
                 }
-                const auto packet =
-                    bench::best_of({r("Packet4"), r("Packet8"), r("Packet16"), r("Block8"),
-                                    r("Block16"), r("Stream8"), r("Stream16")});
-                const auto sah = bench::best_of(
-                    {r("Packet8Sah"), r("Block8Sah"), r("Packet16Sah"), r("Block16Sah")});
-                const bool every_embree =
-                    r("Embree1") && r("Embree16") && (k == 1 || r("Embree1M"));  // no 1M shadow
-                const auto embree = bench::best_of({r("Embree1"), r("Embree16"), r("Embree1M")});
-                out << " " << bench::ratio_text(packet, r("Scalar")) << " | "
-                    << bench::ratio_text(packet, embree) << " | " << bench::ratio_text(sah, embree)
-                    << " | " << bench::figure_text(over_embree[k], "%.1fx") << " Embree's best: "
-                    << bench::verdict(every_embree ? bench::divide(packet, embree) : std::nullopt,
-                                      over_embree[k]);
-                if (over_scalar[k] > 0.0)
-                    out << "; " << bench::figure_text(over_scalar[k], "%.0fx") << " scalar: "
-                        << bench::verdict(bench::divide(packet, r("Scalar")), over_scalar[k]);
-                out << " |\n";
             }
         }
     }
-    out << "\nTargets (each row's last column says whether the row meets them):\n";
+    print_isas_not_raced(out);
+    out << "\nTargets, at every set (each row's last column says whether the row meets them):\n";
     for (int k = 0; k < 3; ++k) {
         out << "- " << kinds[k]
-            << " rays: packet / Embree's best >= " << bench::figure_text(over_embree[k], "%.1fx")
-            << "\n";
+            << " rays: packet / Embree's best >= " << figure_text(over_embree[k], "%.1fx") << "\n";
         if (over_scalar[k] > 0.0)
             out << "- " << kinds[k]
-                << " rays: packet / scalar >= " << bench::figure_text(over_scalar[k], "%.0fx")
-                << "\n";
+                << " rays: packet / scalar >= " << figure_text(over_scalar[k], "%.0fx") << "\n";
     }
-    out << "\nThe packet figure is the best of the packet contenders that ran.\n";
+    out << "\nThe packet figure is the best of the set's packet contenders that ran.\n";
 }
 
 }  // namespace
-}  // namespace raylane
+}  // namespace raylane::bench
 
 int main(int argc, char** argv) {
     // --rays FILE.npy [--mesh MODEL] [--embree-hits OUT.npy], taken out of argv
@@ -613,9 +491,10 @@ int main(int argc, char** argv) {
     }
     argc = kept;
     argv[argc] = nullptr;
+    if (!raylane::bench::choose_isas(argv[0])) return 2;
     if (rays.empty()) {
-        raylane::register_all();
-        return raylane::bench::run_benchmarks(argc, argv, raylane::print_summary);
+        raylane::bench::register_all();
+        return raylane::bench::run_benchmarks(argc, argv, raylane::bench::print_summary);
     }
     try {
         raylane::bench::load_ray_file_workload(rays, mesh);

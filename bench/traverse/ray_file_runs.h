@@ -1,8 +1,9 @@
 // bench: `bench_intersect --rays FILE.npy [--mesh MODEL]`: a user's rays (an (N, 6) float32
-// .npy file) against one mesh, through every contender in one run: Raylane's scalar path and
-// packet path (traverse/intersect_batch.h, the code behind the Python module's Mesh.intersect:
-// Packet picks blocks or streams per 256 rays, Block and Stream force one), and Embree 3
-// (rtcIntersect1 / 16 / 1M, rtcOccluded1 / 16 / 1M) when it is installed; every contender writes
+// .npy file) against one mesh, through every contender in one run: Raylane's scalar path and,
+// on every instruction set raced (support/isa_sets.h), its packet path (traverse/intersect_batch.h,
+// the code behind the Python module's Mesh.intersect: Packet picks blocks or streams per 256
+// rays, Block and Stream force one) and Embree 3 restricted to the same set (rtcIntersect1 / 16 /
+// 1M, rtcOccluded1 / 16 / 1M) when it is installed; every contender writes
 // the answers the Python module returns (t, primitive, u, v, unit normal; occluded flags). Closest
 // hits and any-hit queries (t_max = inf), on 1 thread and on all. The mesh is the model file as it
 // is (load_mesh, as raylane.load_mesh reads it), not a scene's placement of it.
@@ -15,18 +16,20 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "io/load_mesh.h"
 #include "io/model_path.h"
+#include "support/isa_sets.h"
 #include "support/ray_file.h"
 #include "support/summary.h"
 #include "traverse/intersect_batch.h"
 
 #ifdef RAYLANE_HAVE_EMBREE
-#include <embree3/rtcore.h>
+#include "traverse/embree_scene.h"
 #endif
 
 namespace raylane::bench {
@@ -39,8 +42,7 @@ struct RayFileWorkload {
     Accel accel;
     TriangleNormals normals;
 #ifdef RAYLANE_HAVE_EMBREE
-    RTCDevice device = nullptr;
-    RTCScene rtc_scene = nullptr;
+    std::map<Isa, RTCScene> rtc_scenes;  ///< the mesh in Embree, per set (embree_scene)
 #endif
     RayArrays arrays() const {
         RayArrays a;
@@ -56,7 +58,7 @@ inline RayFileWorkload& ray_file_workload() {
     return w;
 }
 
-/// Reads the rays and the model and builds the BVHs (and Embree's); throws on bad input.
+/// Reads the rays and the model and builds the BVH; throws on bad input.
 inline void load_ray_file_workload(const std::string& rays_path, const std::string& model) {
     RayFileWorkload& w = ray_file_workload();
     w.rays_path = rays_path;
@@ -73,25 +75,17 @@ inline void load_ray_file_workload(const std::string& rays_path, const std::stri
     w.scene.meshes.push_back(std::move(mesh));
     w.accel = build_accel(w.scene, BuildParams{});
     w.normals = make_triangle_normals(w.scene);
-#ifdef RAYLANE_HAVE_EMBREE
-    const Mesh& m = w.scene.meshes[0];
-    w.device = rtcNewDevice(nullptr);
-    w.rtc_scene = rtcNewScene(w.device);
-    RTCGeometry g = rtcNewGeometry(w.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
-    for (size_t i = 0; i < m.positions.size(); ++i)
-        for (int k = 0; k < 3; ++k) v[3 * i + size_t(k)] = m.positions[i][k];
-    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), m.tris.size()));
-    for (size_t i = 0; i < m.tris.size(); ++i)
-        for (int k = 0; k < 3; ++k) idx[3 * i + size_t(k)] = m.tris[i][k];
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(w.rtc_scene, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(w.rtc_scene);
-#endif
 }
+
+#ifdef RAYLANE_HAVE_EMBREE
+/// The mesh in Embree on the set's device, built on first use.
+inline RTCScene embree_scene(Isa isa) {
+    RayFileWorkload& w = ray_file_workload();
+    RTCScene& scene = w.rtc_scenes[isa];
+    if (!scene) scene = make_embree_scene(isa, w.scene.meshes);
+    return scene;
+}
+#endif
 
 /// Counts rays per second over `threads` threads; body(first, last) traces a range of rays
 /// (tasks of 256 rays) or, with whole = true, body(0, count) is called once per iteration.
@@ -115,9 +109,11 @@ void run_ray_file(benchmark::State& state, int threads, bool whole, Body&& body)
 }
 
 /// Scalar, Packet, Block and Stream: intersect_closest_batch / intersect_any_batch on the
-/// whole file (they spread the rays over the threads themselves), writing the arrays that
-/// Mesh.intersect and Mesh.occluded return.
-inline void bench_ray_file_batch(benchmark::State& state, bool any_hit, BatchParams params) {
+/// whole file (they spread the rays over the threads themselves) with the set `isa` in use,
+/// writing the arrays that Mesh.intersect and Mesh.occluded return.
+inline void bench_ray_file_batch(benchmark::State& state, Isa isa, bool any_hit,
+                                 BatchParams params) {
+    use_isa(isa);
     const RayFileWorkload& w = ray_file_workload();
     const size_t n = w.count;
     std::vector<float> t(n), u(n), v(n), normal(3 * n);
@@ -164,9 +160,10 @@ struct RayFileOutputs {
 /// Embree1 (one ray at a time), Embree16 (packets of 16 consecutive rays, `coherent` context
 /// flag or not) and Embree1M (streams of 256 rays). Each writes the answers Mesh.intersect and
 /// Mesh.occluded return (RayFileOutputs), as the Raylane contenders do.
-inline void bench_ray_file_embree(benchmark::State& state, bool any_hit, int api, bool coherent,
-                                  int threads) {
+inline void bench_ray_file_embree(benchmark::State& state, Isa isa, bool any_hit, int api,
+                                  bool coherent, int threads) {
     const RayFileWorkload& w = ray_file_workload();
+    const RTCScene rtc_scene = embree_scene(isa);
     RayFileOutputs out(w.count);
     run_ray_file(state, threads, false, [&](size_t first, size_t last) {
         RTCIntersectContext ctx;
@@ -177,10 +174,10 @@ inline void bench_ray_file_embree(benchmark::State& state, bool any_hit, int api
             for (size_t i = first; i < last; ++i) {
                 RTCRayHit rh = embree_ray(&w.rays[6 * i]);
                 if (any_hit) {
-                    rtcOccluded1(w.rtc_scene, &ctx, &rh.ray);
+                    rtcOccluded1(rtc_scene, &ctx, &rh.ray);
                     out.occluded[i] = rh.ray.tfar < 0.0f;
                 } else {
-                    rtcIntersect1(w.rtc_scene, &ctx, &rh);
+                    rtcIntersect1(rtc_scene, &ctx, &rh);
                     out.set(i, rh.hit.geomID != RTC_INVALID_GEOMETRY_ID, rh.ray.tfar, rh.hit.primID,
                             rh.hit.u, rh.hit.v, rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
                 }
@@ -200,9 +197,9 @@ inline void bench_ray_file_embree(benchmark::State& state, bool any_hit, int api
                     rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
                 }
                 if (any_hit)
-                    rtcOccluded16(valid, w.rtc_scene, &ctx, &rh.ray);
+                    rtcOccluded16(valid, rtc_scene, &ctx, &rh.ray);
                 else
-                    rtcIntersect16(valid, w.rtc_scene, &ctx, &rh);
+                    rtcIntersect16(valid, rtc_scene, &ctx, &rh);
                 for (size_t k = 0; k < 16 && i + k < last; ++k) {
                     if (any_hit) {
                         out.occluded[i + k] = rh.ray.tfar[k] < 0.0f;
@@ -220,10 +217,10 @@ inline void bench_ray_file_embree(benchmark::State& state, bool any_hit, int api
             if (any_hit) {
                 alignas(64) RTCRay r[256];
                 for (size_t k = 0; k < n; ++k) r[k] = rh[k].ray;
-                rtcOccluded1M(w.rtc_scene, &ctx, r, unsigned(n), sizeof(RTCRay));
+                rtcOccluded1M(rtc_scene, &ctx, r, unsigned(n), sizeof(RTCRay));
                 for (size_t k = 0; k < n; ++k) out.occluded[first + k] = r[k].tfar < 0.0f;
             } else {
-                rtcIntersect1M(w.rtc_scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
+                rtcIntersect1M(rtc_scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
                 for (size_t k = 0; k < n; ++k)
                     out.set(first + k, rh[k].hit.geomID != RTC_INVALID_GEOMETRY_ID, rh[k].ray.tfar,
                             rh[k].hit.primID, rh[k].hit.u, rh[k].hit.v, rh[k].hit.Ng_x,
@@ -236,18 +233,19 @@ inline void bench_ray_file_embree(benchmark::State& state, bool any_hit, int api
 }
 #endif
 
-/// `--embree-hits OUT.npy`: Embree's closest hit of every ray (rtcIntersect1), as an (N, 4)
-/// float64 array of t (inf on a miss), primitive id (-1 on a miss) and barycentrics u, v, for
-/// checks against Raylane's. Returns false when Embree is not built in.
+/// `--embree-hits OUT.npy`: Embree's closest hit of every ray (rtcIntersect1, on the set in
+/// use), as an (N, 4) float64 array of t (inf on a miss), primitive id (-1 on a miss) and
+/// barycentrics u, v, for checks against Raylane's. Returns false when Embree is not built in.
 inline bool write_embree_hits(const std::string& path) {
 #ifdef RAYLANE_HAVE_EMBREE
     const RayFileWorkload& w = ray_file_workload();
+    const RTCScene rtc_scene = embree_scene(isa_in_use());
     std::vector<double> out(4 * w.count);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (size_t i = 0; i < w.count; ++i) {
         RTCRayHit rh = embree_ray(&w.rays[6 * i]);
-        rtcIntersect1(w.rtc_scene, &ctx, &rh);
+        rtcIntersect1(rtc_scene, &ctx, &rh);
         const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         out[4 * i] = hit ? double(rh.ray.tfar) : double(infinity);
         out[4 * i + 1] = hit ? double(rh.hit.primID) : -1.0;
@@ -263,8 +261,9 @@ inline bool write_embree_hits(const std::string& path) {
 }
 
 /// BM_RayFile_Build: what raylane.Mesh builds from its arrays (build_accel of the one-object
-/// scene and the triangles' normals), from the loaded mesh.
+/// scene and the triangles' normals), from the loaded mesh, on the set in use.
 inline void bench_ray_file_build(benchmark::State& state) {
+    use_isa(isa_in_use());
     const RayFileWorkload& w = ray_file_workload();
     for (auto _ : state) {
         Accel accel = build_accel(w.scene, BuildParams{});
@@ -274,6 +273,13 @@ inline void bench_ray_file_build(benchmark::State& state) {
     }
 }
 
+/// The name of a contender on a set: "Packet_avx2", "Embree16_avx2".
+inline std::string ray_file_name(const char* contender, Isa isa) {
+    return std::string(contender) + "_" + isa_name(isa);
+}
+
+/// BM_RayFile_Closest_Scalar/threads:1 (on the set in use), BM_RayFile_Closest_Packet_avx2/
+/// threads:1 and BM_RayFile_Closest_Embree16_avx2/threads:1 (per set raced), ...
 inline void register_ray_file() {
     benchmark::RegisterBenchmark("BM_RayFile_Build", bench_ray_file_build)
         ->Unit(benchmark::kMillisecond)
@@ -285,68 +291,85 @@ inline void register_ray_file() {
         const std::string query = any_hit ? "BM_RayFile_Occluded_" : "BM_RayFile_Closest_";
         for (int threads : thread_counts) {
             const std::string suffix = "/threads:" + std::to_string(threads);
-            auto add_batch = [&](const char* name, BatchPath path, Coherence coherence) {
-                const BatchParams params{path, coherence, threads};
-                benchmark::RegisterBenchmark((query + name + suffix).c_str(), bench_ray_file_batch,
-                                             any_hit, params)
+            auto add = [&](const std::string& name, auto&&... args) {
+                benchmark::RegisterBenchmark((query + name + suffix).c_str(), args...)
                     ->Unit(benchmark::kMillisecond)
                     ->UseRealTime();
             };
-            add_batch("Scalar", BatchPath::scalar, Coherence::automatic);
-            add_batch("Packet", BatchPath::packet, Coherence::automatic);
-            add_batch("Block", BatchPath::packet, Coherence::coherent);
-            add_batch("Stream", BatchPath::packet, Coherence::incoherent);
+            auto batch = [&](BatchPath path, Coherence coherence) {
+                return BatchParams{path, coherence, threads};
+            };
+            add("Scalar", bench_ray_file_batch, isa_in_use(), any_hit,
+                batch(BatchPath::scalar, Coherence::automatic));
+            for (Isa isa : raced_isas()) {
+                add(ray_file_name("Packet", isa), bench_ray_file_batch, isa, any_hit,
+                    batch(BatchPath::packet, Coherence::automatic));
+                add(ray_file_name("Block", isa), bench_ray_file_batch, isa, any_hit,
+                    batch(BatchPath::packet, Coherence::coherent));
+                add(ray_file_name("Stream", isa), bench_ray_file_batch, isa, any_hit,
+                    batch(BatchPath::packet, Coherence::incoherent));
 #ifdef RAYLANE_HAVE_EMBREE
-            auto add_embree = [&](const char* name, int api, bool coherent) {
-                benchmark::RegisterBenchmark((query + name + suffix).c_str(), bench_ray_file_embree,
-                                             any_hit, api, coherent, threads)
-                    ->Unit(benchmark::kMillisecond)
-                    ->UseRealTime();
-            };
-            add_embree("Embree1", 1, false);
-            add_embree("Embree16", 16, false);
-            add_embree("Embree16Coherent", 16, true);
-            add_embree("Embree1M", 256, false);
+                add(ray_file_name("Embree1", isa), bench_ray_file_embree, isa, any_hit, 1, false,
+                    threads);
+                add(ray_file_name("Embree16", isa), bench_ray_file_embree, isa, any_hit, 16, false,
+                    threads);
+                add(ray_file_name("Embree16Coherent", isa), bench_ray_file_embree, isa, any_hit, 16,
+                    true, threads);
+                add(ray_file_name("Embree1M", isa), bench_ray_file_embree, isa, any_hit, 256, false,
+                    threads);
 #endif
+            }
         }
     }
 }
 
 /// `--summary` of a ray file: Mrays/s (median of the repetitions) per contender, query and
-/// thread count, and the packet path over Embree's best.
+/// thread count, one table per instruction set (Scalar, the same in each), and the packet path
+/// over Embree's best on the same set.
 inline void print_ray_file_summary(const Measured& m, std::ostream& out) {
     const RayFileWorkload& w = ray_file_workload();
     const char* contenders[] = {"Scalar",  "Packet",   "Block",    "Stream",
                                 "Embree1", "Embree16", "Embree1M", "Embree16Coherent"};
     out << "Mrays/s, median of the repetitions: " << w.count << " rays of " << w.rays_path << " at "
-        << w.mesh_path << " (" << w.scene.meshes[0].tris.size() << " triangles)\n\n";
-    out << "| query |";
-    for (const char* c : contenders) out << " " << c << " |";
-    out << " Packet / Embree's best |\n|---|";
-    for (size_t i = 0; i < std::size(contenders) + 1; ++i) out << "---:|";
-    out << "\n";
-    for (const char* query : {"Closest", "Occluded"}) {
-        for (int threads = 1; threads <= tbb::info::default_concurrency(); ++threads) {
-            auto rate = [&](const char* c) {
-                const std::optional<double> r =
-                    m.median_counter(std::string("BM_RayFile_") + query + "_" + c +
-                                         "/threads:" + std::to_string(threads) + "/real_time",
-                                     "rays/s");
-                return r ? std::optional<double>(*r * 1e-6) : std::nullopt;
-            };
-            bool ran = false;
-            for (const char* c : contenders) ran = ran || rate(c);
-            if (!ran) continue;
-            out << "| " << query << ", " << threads << (threads == 1 ? " thread" : " threads")
-                << " |";
-            for (const char* c : contenders) out << " " << figure_text(rate(c), "%.3g") << " |";
-            const auto embree = best_of(
-                {rate("Embree1"), rate("Embree16"), rate("Embree1M"), rate("Embree16Coherent")});
-            out << " " << ratio_text(rate("Packet"), embree) << " |\n";
+        << w.mesh_path << " (" << w.scene.meshes[0].tris.size()
+        << " triangles); one table per instruction set, Embree restricted to the same set\n";
+    for (Isa isa : raced_isas()) {
+        auto rate = [&](const char* query, const char* c, int threads) {
+            const std::string name = std::string(c) == "Scalar" ? c : ray_file_name(c, isa);
+            const std::optional<double> r =
+                m.median_counter(std::string("BM_RayFile_") + query + "_" + name +
+                                     "/threads:" + std::to_string(threads) + "/real_time",
+                                 "rays/s");
+            return r ? std::optional<double>(*r * 1e-6) : std::nullopt;
+        };
+        bool table = false;
+        for (const char* query : {"Closest", "Occluded"}) {
+            for (int threads = 1; threads <= tbb::info::default_concurrency(); ++threads) {
+                auto r = [&](const char* c) { return rate(query, c, threads); };
+                bool ran = false;  // any of this set's contenders (all but Scalar)
+                for (size_t i = 1; i < std::size(contenders); ++i) ran = ran || r(contenders[i]);
+                if (!ran) continue;
+                if (!table) {
+                    out << "\n| " << isa_label(isa) << " |";
+                    for (const char* c : contenders) out << " " << c << " |";
+                    out << " Packet / Embree's best |\n|---|";
+                    for (size_t i = 0; i < std::size(contenders) + 1; ++i) out << "---:|";
+                    out << "\n";
+                    table = true;
+                }
+                out << "| " << query << ", " << threads << (threads == 1 ? " thread" : " threads")
+                    << " |";
+                for (const char* c : contenders) out << " " << figure_text(r(c), "%.3g") << " |";
+                const auto embree =
+                    best_of({r("Embree1"), r("Embree16"), r("Embree1M"), r("Embree16Coherent")});
+                out << " " << ratio_text(r("Packet"), embree) << " |\n";
+            }
         }
     }
+    print_isas_not_raced(out);
     out << "\nBVH build (BM_RayFile_Build): "
-        << figure_text(m.median_ms("BM_RayFile_Build/real_time"), "%.1f ms") << "\n";
+        << figure_text(m.median_ms("BM_RayFile_Build/real_time"), "%.1f ms") << ", on "
+        << isa_name(isa_in_use()) << "\n";
 }
 
 }  // namespace raylane::bench

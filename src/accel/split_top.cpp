@@ -19,8 +19,12 @@ struct KeyBounds {
     uint32_t hi[3] = {0, 0, 0};
 };
 
+// The packet loops' helpers are templates on the build's width, instantiated only by the sets
+// whose loops run packets (packet_loops: compaction is native).
+
 /// Grows the bounds on axis k by a packet of smallest and a packet of largest keys.
-void grow(KeyBounds& b, int k, const vint<build_width>& lo, const vint<build_width>& hi) {
+template <int W>
+void grow(KeyBounds& b, int k, const vint<W>& lo, const vint<W>& hi) {
     b.lo[k] = std::min(b.lo[k], hmin_u32(lo));
     b.hi[k] = std::max(b.hi[k], hmax_u32(hi));
 }
@@ -38,7 +42,7 @@ KeyBounds key_bounds(const TopArrays& a, uint32_t begin, uint32_t end) {
                 lo = min_u32(lo, key);
                 hi = max_u32(hi, key);
             }
-            grow(b, k, lo, hi);
+            grow<W>(b, k, lo, hi);
         }
         for (; i < end; ++i) {
             const uint32_t key = order_key(c[i]);
@@ -65,10 +69,9 @@ void copy_primitive(const TopArrays& from, uint32_t i, const TopArrays& to, uint
 /// Moves the primitives i .. i + build_width - 1 of `from` that `valid` holds to `to`: those of
 /// each group go[g] compressed together and stored from *at[g] (no write past the group's end),
 /// which then advances.
-void store_compressed(const TopArrays& from, const TopArrays& to, uint32_t i,
-                      const vmask<build_width>& valid, const vmask<build_width>* go,
-                      uint32_t* const* at, int groups) {
-    constexpr int W = build_width;
+template <int W>
+void store_compressed(const TopArrays& from, const TopArrays& to, uint32_t i, const vmask<W>& valid,
+                      const vmask<W>* go, uint32_t* const* at, int groups) {
     const vint<W> ids = from.ids ? load(as_lanes(from.ids + i), valid)
                                  : add(broadcast<W>(i), lane_index<W>());  // positions
     vfloat<W> c2[3];
@@ -89,8 +92,9 @@ void store_compressed(const TopArrays& from, const TopArrays& to, uint32_t i,
 }
 
 /// The valid lanes of the packet from i in a range that ends at `end`.
-vmask<build_width> valid_from(uint32_t i, uint32_t end) {
-    return prefix_mask<build_width>(int(std::min(end - i, uint32_t{build_width})));
+template <int W>
+vmask<W> valid_from(uint32_t i, uint32_t end) {
+    return prefix_mask<W>(int(std::min(end - i, uint32_t{W})));
 }
 
 /// Stable partition of a top node's ids and centroids, cur[begin, end), into other: the
@@ -105,11 +109,11 @@ void partition_top(const TopArrays& cur, const TopArrays& other, uint32_t begin,
         // a packet at a time: each side's ids and centroids compressed together and stored (no
         // write past a side's end; the last packet's lanes past `end` are inactive)
         for (; i < end; i += W) {
-            const vmask<W> valid = valid_from(i, end);
+            const vmask<W> valid = valid_from<W>(i, end);
             const vmask<W> go_left = sweep.first(order_keys(load(c + i, valid)), valid);
             const vmask<W> go[2] = {go_left, mask_andnot(valid, go_left)};
             uint32_t* at[2] = {&l, &r};
-            store_compressed(cur, other, i, valid, go, at, 2);
+            store_compressed<W>(cur, other, i, valid, go, at, 2);
         }
     }
     // branch free (the side is unpredictable)
@@ -150,7 +154,7 @@ std::array<KeyBounds, 2> child_key_bounds(const TopArrays& cur, uint32_t begin, 
                 }
         }
         for (int side = 0; side < 2; ++side)
-            for (int k = 0; k < 3; ++k) grow(b[side], k, lo[side][k], hi[side][k]);
+            for (int k = 0; k < 3; ++k) grow<W>(b[side], k, lo[side][k], hi[side][k]);
     }
     for (; i < end; ++i) {
         uint32_t key[3];
@@ -180,7 +184,7 @@ void partition_four(const TopArrays& cur, const TopArrays& other, uint32_t begin
     uint32_t i = begin;
     if constexpr (packet_loops) {
         for (; i < end; i += W) {  // a packet at a time, as partition_top
-            const vmask<W> valid = valid_from(i, end);
+            const vmask<W> valid = valid_from<W>(i, end);
             const vint<W> key = order_keys(load(c + i, valid));
             const vmask<W> first = sweep.first(key, valid);
             vmask<W> go[4];
@@ -192,7 +196,7 @@ void partition_four(const TopArrays& cur, const TopArrays& other, uint32_t begin
                 go[2 * s + 1] = mask_andnot(among, go[2 * s]);
             }
             uint32_t* const to[4] = {&at[0], &at[1], &at[2], &at[3]};
-            store_compressed(cur, other, i, valid, go, to, 4);
+            store_compressed<W>(cur, other, i, valid, go, to, 4);
         }
     }
     for (; i < end; ++i) {

@@ -24,42 +24,28 @@ namespace raylane::RAYLANE_ISA_NS {
 
 namespace brdf_detail {
 
-// Transcendentals: the std:: functions at W = 1 (as brdf_scalar.cpp and optics_scalar.cpp), xsimd's
-// otherwise. (simd/math.h has none of these; they live here rather than in simd/.)
+// Transcendentals: the std:: functions (as brdf_scalar.cpp and optics_scalar.cpp) lane by lane
+// at every W, so that every instruction set and both paths get the same bits. (simd/math.h has
+// none of these; they live here rather than in simd/.)
 template <int W>
 inline vfloat<W> exp(const vfloat<W>& x) {
-    if constexpr (W == 1)
-        return std::exp(x);
-    else
-        return xsimd::exp(x);
+    return map_lanes(x, [](float v) { return std::exp(v); });
 }
 template <int W>
 inline vfloat<W> log1p(const vfloat<W>& x) {
-    if constexpr (W == 1)
-        return std::log1p(x);
-    else
-        return xsimd::log1p(x);
+    return map_lanes(x, [](float v) { return std::log1p(v); });
 }
 template <int W>
 inline vfloat<W> expm1(const vfloat<W>& x) {
-    if constexpr (W == 1)
-        return std::expm1(x);
-    else
-        return xsimd::expm1(x);
+    return map_lanes(x, [](float v) { return std::expm1(v); });
 }
 template <int W>
 inline vfloat<W> cos(const vfloat<W>& x) {
-    if constexpr (W == 1)
-        return std::cos(x);
-    else
-        return xsimd::cos(x);
+    return map_lanes(x, [](float v) { return std::cos(v); });
 }
 template <int W>
 inline vfloat<W> sin(const vfloat<W>& x) {
-    if constexpr (W == 1)
-        return std::sin(x);
-    else
-        return xsimd::sin(x);
+    return map_lanes(x, [](float v) { return std::sin(v); });
 }
 
 inline constexpr float pi = std::numbers::pi_v<float>;
