@@ -39,7 +39,16 @@ void add_isa(py::module_& m) {
         "The packet path's instruction sets: 'compiled' (in this module), 'cpu' (those this CPU "
         "runs), 'in_use' (RAYLANE_ISA's, or use_isa's, else the widest) and its 'packet_width'.");
     m.def(
-        "use_isa", [](const std::string& name) { use_isa_named(name, "use_isa"); }, py::arg("name"),
+        "use_isa",
+        [](const std::string& name) {
+            if (name.empty())  // use_isa_named leaves the choice as it is for an empty name
+                throw InputError(
+                    join("use_isa: unknown instruction set '' (sets: sse4.2, avx2, "
+                         "avx512; this machine runs: ",
+                         runnable_isa_names(), ")"));
+            use_isa_named(name, "use_isa");
+        },
+        py::arg("name"),
         "Uses the instruction set `name` ('sse4.2', 'avx2' or 'avx512') from now on; "
         "raylane.Error (a ValueError) when it is unknown or this CPU does not run it.");
 }
