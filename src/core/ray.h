@@ -10,6 +10,13 @@ namespace raylane {
 using glm::vec2;
 using glm::vec3;
 
+// Every instruction set's copy of the packet path shares the scene and BVH structs with the
+// baseline code (core/isa.h), so their GLM members must have one layout whatever the -march:
+// GLM's plain types, never its SIMD-aligned ones (GLM_FORCE_DEFAULT_ALIGNED_GENTYPES).
+static_assert(sizeof(glm::vec3) == 12 && alignof(glm::vec3) == 4);
+static_assert(sizeof(glm::vec4) == 16 && alignof(glm::vec4) == 4);
+static_assert(sizeof(glm::mat4) == 64 && alignof(glm::mat4) == 4);
+
 inline constexpr float infinity = std::numeric_limits<float>::infinity();
 inline constexpr uint32_t invalid_id = 0xffffffffu;
 
