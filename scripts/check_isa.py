@@ -26,10 +26,9 @@ AVX512_REGISTER = re.compile(r"%zmm|%k[0-7]\b|%[xy]mm(1[6-9]|2[0-9]|3[01])\b|\{%
 def owner(symbol):
     """The set whose code the function is ('baseline' for the rest)."""
     for name, mangled in SETS:
-        if mangled in symbol or symbol.startswith("isa_" + name.replace(".", "") + "."):
+        namespace = mangled.lstrip("0123456789")  # isa_avx2
+        if mangled in symbol or symbol.startswith(namespace + "."):
             return name
-    if symbol.startswith("isa_sse42."):
-        return "sse4.2"
     return "baseline"
 
 

@@ -73,7 +73,7 @@ bool parse(std::string_view name, Isa& out) {
             out = isa;
             return true;
         }
-    // the spelling of GCC's -m flags and of Embree's isa= option
+    // sse4.2 as other tools spell it (xsimd's sse4_2)
     if (name == "sse42" || name == "sse4_2") {
         out = Isa::sse42;
         return true;
