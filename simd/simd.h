@@ -50,7 +50,7 @@ inline constexpr int native_width = 1;
 #endif
 
 namespace simd_detail {
-// The xsimd architecture behind each width; void where this build's ISA cannot run it. The FMA
+// The xsimd architecture behind each width; void where this instruction set cannot run it. The FMA
 // variants matter only for xsimd's own kernels: fma() in math.h emits FMA instructions itself.
 #if XSIMD_WITH_AVX512BW
 using Arch16 = xsimd::avx512bw;
@@ -95,13 +95,10 @@ struct Packet<1> {
 };
 }  // namespace simd_detail
 
-/// True when this build can run packets of width W (1 always; 4, 8, 16 as the ISA allows).
+/// True when this instruction set can run packets of width W (1 always; 4, 8, 16 as it allows).
 template <int W>
 inline constexpr bool width_supported = W == 1 || !std::is_void_v<simd_detail::ArchFor<W>>;
 static_assert(width_supported<native_width>);
-static_assert((!width_supported<16> || width_supported<8>)&&(!width_supported<8> ||
-                                                             width_supported<4>),
-              "supported_widths below assumes nested widths");
 
 /// W floats, W int32 lanes, and a W-lane mask usable with vfloat<W>. At W == 1: float, int32_t,
 /// bool. These are aliases, so W cannot be deduced from them: kernels receive W explicitly.
@@ -142,14 +139,6 @@ concept AnyMask = std::is_same_v<M, vmask<width_of<M>>>;
 /// A width as a type, for typed tests and benchmarks.
 template <int W>
 using Width = std::integral_constant<int, W>;
-
-/// List<Width<1>, Width<4>, ...> over every supported width, e.g. supported_widths<testing::Types>.
-template <template <class...> class List>
-using supported_widths = std::conditional_t<
-    width_supported<16>, List<Width<1>, Width<4>, Width<8>, Width<16>>,
-    std::conditional_t<
-        width_supported<8>, List<Width<1>, Width<4>, Width<8>>,
-        std::conditional_t<width_supported<4>, List<Width<1>, Width<4>>, List<Width<1>>>>>;
 
 // ---- construction and memory ------------------------------------------------------------------
 

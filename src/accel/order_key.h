@@ -11,7 +11,7 @@
 
 namespace raylane::RAYLANE_ISA_NS::median_detail {
 
-/// The packet width of the build's vector loops: the widest this build's ISA runs (simd/simd.h).
+/// The packet width of the build's vector loops: this instruction set's width (simd/simd.h).
 /// Every width gives the same tree.
 inline constexpr int build_width = native_width;
 

@@ -1,10 +1,10 @@
 // Tests of shade/brdf_packet.h and shade/optics_packet.h against the scalar references
-// shade/brdf_scalar.h and shade/optics_scalar.h, at every width this build runs. W = 1 must match
-// bit for bit (same std:: calls, same operation order). Wider packets use xsimd's exp / log1p /
-// expm1 / sin / cos, a few ulps from libm; an error of d ulps in the argument x of exp(x) becomes
-// |x| d ulps in the result, so values are compared with a relative tolerance of (16 + 4 |ln v|) *
-// 2^-23 where v is the lobe value relative to its peak (typically <= 1e-5 relative), and directions
-// with an absolute 1e-6.
+// shade/brdf_scalar.h and shade/optics_scalar.h, at every width of the program's instruction
+// set. W = 1 must match bit for bit (same std:: calls, same operation order). Wider packets call
+// the same std:: transcendentals lane by lane, but group some products differently; an error of
+// d ulps in the argument x of exp(x) becomes |x| d ulps in the result, so values are compared
+// with a relative tolerance of (16 + 4 |ln v|) * 2^-23 where v is the lobe value relative to its
+// peak (typically <= 1e-5 relative), and directions with an absolute 1e-6.
 #include "shade/brdf_packet.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,8 @@
 // tests for simd/simd.h: widths, memory, selection, mask logic, operators, int bit operations
 // and conversions at every supported width, lane by lane against scalar C++ on random inputs
 // that include NaN, inf, -0.0 and denormals.
+#include "core/error.h"
+#include "core/isa.h"
 #include "simd/simd.h"
 
 #include <gtest/gtest.h>
@@ -45,6 +47,15 @@ TEST(SimdWidths, NativeWidthFollowsTheCompilerTarget) {
     EXPECT_EQ(width_of<vint<native_width>>, native_width);
     EXPECT_EQ(width_of<vmask<native_width>>, native_width);
     EXPECT_EQ(width_of<float>, 1);
+}
+
+TEST(SimdWidths, TheProgramsInstructionSetIsTheOneInUseAtItsWidth) {
+    // test_main forces the set the program is compiled for; the dispatched functions use it
+    EXPECT_EQ(active_isa(), Isa::RAYLANE_ISA_ENUM);
+    EXPECT_EQ(isa_width(active_isa()), native_width);
+    EXPECT_TRUE(cpu_runs(active_isa()));
+    EXPECT_THROW(use_isa_named("avx1024", "test"), InputError);
+    EXPECT_EQ(active_isa(), Isa::RAYLANE_ISA_ENUM);  // a refused name leaves the set as it was
 }
 
 TEST(SimdWidths, WidthOneIsPlainScalars) {
