@@ -1,8 +1,6 @@
 // tests for simd/simd.h: widths, memory, selection, mask logic, operators, int bit operations
 // and conversions at every supported width, lane by lane against scalar C++ on random inputs
 // that include NaN, inf, -0.0 and denormals.
-#include "core/error.h"
-#include "core/isa.h"
 #include "simd/simd.h"
 
 #include <gtest/gtest.h>
@@ -16,6 +14,8 @@
 #include <random>
 #include <string>
 
+#include "core/error.h"
+#include "core/isa.h"
 #include "support/lane_helpers.h"
 #include "support/widths.h"
 
