@@ -103,11 +103,4 @@ BENCHMARK(BM_PngStbZlib)->ArgName("threads")->Arg(1)->Unit(benchmark::kMilliseco
 }  // namespace
 }  // namespace raylane
 
-int main(int argc, char** argv) {
-    if (!raylane::bench::choose_isas(argv[0])) return 2;  // a RAYLANE_ISA it cannot use
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-    return 0;
-}
+int main(int argc, char** argv) { return raylane::bench::run_plain_benchmarks(argc, argv); }

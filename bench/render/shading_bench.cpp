@@ -97,11 +97,4 @@ RAYLANE_SHADING_BENCH(MirrorSpheres, "fig08b_dof_middle.json", 320)
 }  // namespace
 }  // namespace raylane
 
-int main(int argc, char** argv) {
-    if (!raylane::bench::choose_isas(argv[0])) return 2;  // a RAYLANE_ISA it cannot use
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-    return 0;
-}
+int main(int argc, char** argv) { return raylane::bench::run_plain_benchmarks(argc, argv); }

@@ -1,6 +1,8 @@
 // bench: the instruction sets a benchmark program races (isa_sets.h).
 #include "support/isa_sets.h"
 
+#include <benchmark/benchmark.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +18,15 @@ std::vector<Isa>& chosen() {
 }
 
 }  // namespace
+
+int run_plain_benchmarks(int argc, char** argv) {
+    if (!choose_isas(argv[0])) return 2;  // a RAYLANE_ISA it cannot use
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
 
 bool choose_isas(const char* program) {
     try {

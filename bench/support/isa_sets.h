@@ -16,6 +16,9 @@ namespace raylane::bench {
 /// "<program>: <reason>" on stderr and returns false: the program exits with status 2.
 bool choose_isas(const char* program);
 
+/// Google Benchmark's own main after choose_isas, for the programs without --summary.
+int run_plain_benchmarks(int argc, char** argv);
+
 /// The sets choose_isas chose, narrowest first.
 const std::vector<Isa>& raced_isas();
 
