@@ -36,6 +36,9 @@ int worker_threads(int requested);
 /// Checks that an option's value is a finite number >= 0 (CLI::Range lets NaN through and
 /// prints its bounds in full).
 CLI::Validator finite_non_negative();
+/// Checks that an integer option's value is a whole number in decimal digits from lo to hi: "4.5"
+/// is refused as not a whole number, 0 as out of range (CLI::Range says "not in range" for both).
+CLI::Validator whole_in(long long lo, long long hi);
 /// Checks that an option's value is a whole number >= 0 in decimal digits that fits 64 bits, and
 /// passes it on without leading zeros (CLI11 itself reads "010" as octal and clamps larger
 /// values). Use it with transform(): check() would pass on the original text.

@@ -37,7 +37,7 @@ void add_isa_option(CLI::App* cmd, std::string& isa) {
 
 void add_threads_option(CLI::App* cmd, int& threads) {
     cmd->add_option("--threads", threads, "worker threads (default: all; at most the cores)")
-        ->check(CLI::Range(1, 1024));
+        ->check(whole_in(1, 1024));
 }
 
 int worker_threads(int requested) {
@@ -55,6 +55,21 @@ CLI::Validator finite_non_negative() {
             return {};
         },
         "NUMBER >= 0", "finite_non_negative");
+}
+
+CLI::Validator whole_in(long long lo, long long hi) {
+    const std::string range = std::to_string(lo) + " to " + std::to_string(hi);
+    return CLI::Validator(
+        [lo, hi, range](std::string& text) -> std::string {
+            if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+                return "must be a whole number from " + range + ", not '" + text + "'";
+            errno = 0;
+            const long long v = std::strtoll(text.c_str(), nullptr, 10);
+            if (errno == ERANGE || v < lo || v > hi)
+                return "must be from " + range + ", not " + text;
+            return {};
+        },
+        "INTEGER in " + range, "whole_in");
 }
 
 CLI::Validator whole_number() {

@@ -98,10 +98,10 @@ void add_compare_command(CLI::App& app, int& exit_code) {
                     "scene JSON file or model (.obj, .ply; default: the built-in scene)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
-        ->check(CLI::Range(1, 1 << 20));
+        ->check(whole_in(1, 1 << 20));
     add_threads_option(cmd, o->threads);
-    cmd->add_option("--width", o->width, "image width")->check(CLI::Range(1, max_film_side));
-    cmd->add_option("--height", o->height, "image height")->check(CLI::Range(1, max_film_side));
+    cmd->add_option("--width", o->width, "image width")->check(whole_in(1, max_film_side));
+    cmd->add_option("--height", o->height, "image height")->check(whole_in(1, max_film_side));
     add_bvh_option(cmd, o->bvh);
     cmd->add_option("--tolerance", o->tolerance,
                     "largest allowed per-channel difference (linear; default 2e-3)")
@@ -109,7 +109,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--id-allowance", o->id_allowance, "primary hits allowed to differ (default 0)")
         ->transform(whole_number());
     cmd->add_option("--repeats", o->repeats, "timed runs per path; time = median (default 3)")
-        ->check(CLI::Range(1, 100));
+        ->check(whole_in(1, 100));
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
     cmd->callback([o, &exit_code] { exit_code = run_compare(*o); });
 }

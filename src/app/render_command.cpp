@@ -152,12 +152,12 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_flag("--exr-float", o->exr_float,
                   "EXR output: 32-bit floats (default: 16-bit halves; parts are always floats)");
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
-        ->check(CLI::Range(1, 1 << 20));
+        ->check(whole_in(1, 1 << 20));
     add_threads_option(cmd, o->threads);
     cmd->add_option("--width", o->width, "image width (alone: keeps the aspect ratio)")
-        ->check(CLI::Range(1, max_film_side));
+        ->check(whole_in(1, max_film_side));
     cmd->add_option("--height", o->height, "image height (alone: keeps the aspect ratio)")
-        ->check(CLI::Range(1, max_film_side));
+        ->check(whole_in(1, max_film_side));
     cmd->add_option("--aov", o->aov,
                     "output: color, normal, depth, bvh-cost, or all (as layers of one .exr)")
         ->check(CLI::IsMember({"color", "normal", "depth", "bvh-cost", "all"}));

@@ -162,8 +162,12 @@ PixelRect parse_region(const std::vector<int>& crop, const std::string& tile, in
     };
     if (slash == std::string::npos) number("");
     const int index = number(tile.substr(0, slash)), count = number(tile.substr(slash + 1));
-    if (count < 1 || index >= count)
-        throw InputError("--tile: expected I/N (part I of N, 0 <= I < N), got '" + tile + "'");
+    if (count < 1)
+        throw InputError("--tile " + tile + ": N, the number of parts, must be at least 1");
+    if (index >= count)
+        throw InputError("--tile " + tile + ": I must be below N: a frame cut into " +
+                         std::to_string(count) + " parts has parts 0 to " +
+                         std::to_string(count - 1));
     try {
         return tile_part(width, height, RenderParams{}.tile_size, index, count);
     } catch (const std::invalid_argument& e) {

@@ -553,23 +553,23 @@ void add_report_command(CLI::App& app, int& exit_code) {
                     "where references, CSV and SVG go (default out/report)");
     cmd->add_option("--reference-spp", o->reference_spp,
                     "samples of the converged reference (default 100 x the largest --spp-list)")
-        ->check(CLI::Range(4, 1 << 24));
+        ->check(whole_in(4, 1 << 24));
     cmd->add_option("--reference-path", o->reference_path,
                     "renderer of the reference: packet (default) or scalar")
         ->check(CLI::IsMember({"packet", "scalar"}));
     cmd->add_option("--spp-list", o->spp_list, "sample counts of the sweep (default 1,2,4,...,64)")
         ->delimiter(',')
-        ->check(CLI::Range(1, 1 << 16));
+        ->check(whole_in(1, 1 << 16));
     cmd->add_option("--paths", o->paths, "renderers to sweep (default packet,scalar)")
         ->delimiter(',')
         ->check(CLI::IsMember({"packet", "scalar"}));
     cmd->add_option("--repeats", o->repeats, "seeds per point; time = median (default 3)")
-        ->check(CLI::Range(1, 100));
+        ->check(whole_in(1, 100));
     add_threads_option(cmd, o->threads);
     cmd->add_option("--width", o->width, "image width (alone: keeps the aspect ratio)")
-        ->check(CLI::Range(1, max_film_side));
+        ->check(whole_in(1, max_film_side));
     cmd->add_option("--height", o->height, "image height (alone: keeps the aspect ratio)")
-        ->check(CLI::Range(1, max_film_side));
+        ->check(whole_in(1, max_film_side));
     cmd->add_flag("--fresh-reference", o->fresh_reference,
                   "render the reference even when a cached one matches");
     cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");

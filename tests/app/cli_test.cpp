@@ -92,6 +92,22 @@ TEST(Cli, UnknownOrUnrunnableIsaIsOneLineNamingTheRunnableSets) {
     }
 }
 
+TEST(Cli, IntegerOptionsSayWhetherTheValueIsNotWholeOrOutOfRange) {
+    const std::pair<std::string, std::string> cases[] = {
+        {"render --spp 4.5", "--spp: must be a whole number from 1 to 1048576, not '4.5'"},
+        {"render --spp 0", "--spp: must be from 1 to 1048576, not 0"},
+        {"render --width -3", "--width: must be a whole number from 1 to"},
+        {"compare --repeats 1e3", "--repeats: must be a whole number from 1 to 100, not '1e3'"},
+        {"render --threads 2000", "--threads: must be from 1 to 1024, not 2000"},
+    };
+    for (const auto& [args, text] : cases) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.code, 2) << args;
+        EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
+        EXPECT_NE(r.err.find(text), std::string::npos) << args << ": " << r.err;
+    }
+}
+
 TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
     for (const char* args : {"render --spp 0",
                              "render --aov shiny",
