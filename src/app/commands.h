@@ -47,6 +47,11 @@ CLI::Validator whole_number();
 /// (any case), not a directory, in a directory that exists and that this user may write in.
 CLI::Validator image_output();
 
+/// "render: unknown option '--sp' (did you mean --spp? see raylane render --help)" for the first
+/// word of argv[2..] that starts with "--" and names no option of `cmd` (before a lone "--");
+/// empty when every one is known.
+std::string unknown_option(const CLI::App& cmd, int argc, char** argv);
+
 /// The build parameters a --bvh value names.
 BuildParams build_params(const std::string& bvh);
 

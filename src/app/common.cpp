@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "core/error.h"
@@ -102,6 +103,50 @@ CLI::Validator image_output() {
             return {};
         },
         "FILE.png|FILE.pfm|FILE.exr", "image_output");
+}
+
+namespace {
+
+/// The edit distance of a and b (insertions, deletions, substitutions).
+size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t above = row[j];
+            row[j] =
+                std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+}  // namespace
+
+std::string unknown_option(const CLI::App& cmd, int argc, char** argv) {
+    std::vector<std::string> known = {"--help"};
+    for (const CLI::Option* option : cmd.get_options())
+        for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+    for (int i = 2; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (word == "--") break;
+        if (word.rfind("--", 0) != 0) continue;
+        const std::string name = word.substr(0, word.find('='));
+        if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+        std::string nearest;
+        size_t best = 3;  // suggest only a name within two edits
+        for (const std::string& k : known) {
+            const size_t d = edit_distance(name, k);
+            if (d < best) best = d, nearest = k;
+        }
+        std::string message = cmd.get_name() + ": unknown option '" + name + "' (";
+        if (!nearest.empty()) message += "did you mean " + nearest + "? ";
+        return message + "see raylane " + cmd.get_name() + " --help)";
+    }
+    return {};
 }
 
 BuildParams build_params(const std::string& bvh) {

@@ -63,6 +63,16 @@ int main(int argc, char** argv) {
     }
     // under an MPI launcher every process meets the same bad command line: one of them says so
     const bool quiet = raylane::launched_by_mpi() && raylane::rank_from_environment() != 0;
+    // an unknown --option is named (with the nearest known one) before CLI11 reads the words
+    // after it as the option's value or as the scene
+    if (argc > 1 && argv[1][0] != '-') {
+        const std::string unknown =
+            raylane::unknown_option(*app.get_subcommand(argv[1]), argc, argv);
+        if (!unknown.empty()) {
+            if (!quiet) std::fprintf(stderr, "raylane: %s\n", unknown.c_str());
+            return 2;
+        }
+    }
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);
     try {

@@ -108,6 +108,23 @@ TEST(Cli, IntegerOptionsSayWhetherTheValueIsNotWholeOrOutOfRange) {
     }
 }
 
+TEST(Cli, AnUnknownOptionIsNamedWithTheNearestKnownOne) {
+    const std::pair<std::string, std::string> cases[] = {
+        {"render --sp 4 scene.json", "render: unknown option '--sp' (did you mean --spp?"},
+        {"compare --tolerence=1",
+         "compare: unknown option '--tolerence' (did you mean --tolerance?"},
+        {"render --xyzzy", "render: unknown option '--xyzzy' (see raylane render --help)"},
+    };
+    for (const auto& [args, text] : cases) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.code, 2) << args;
+        EXPECT_EQ(lines(r.err), 1u) << args << ": " << r.err;
+        EXPECT_NE(r.err.find(text), std::string::npos) << args << ": " << r.err;
+    }
+    // a known option written --name=value is not unknown
+    EXPECT_EQ(run("info --bvh=sah").code, 0);
+}
+
 TEST(Cli, BadCommandLineGivesOneLineAndExitCodeTwo) {
     for (const char* args : {"render --spp 0",
                              "render --aov shiny",
