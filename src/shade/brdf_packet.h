@@ -25,8 +25,8 @@ namespace raylane::RAYLANE_ISA_NS {
 namespace brdf_detail {
 
 // Transcendentals: the std:: functions (as brdf_scalar.cpp and optics_scalar.cpp) lane by lane
-// at every W, so that every instruction set and both paths get the same bits. (simd/math.h has
-// none of these; they live here rather than in simd/.)
+// at every W, so that every instruction set and both paths get the same bits. exp, log1p and
+// expm1 are the lobes' own; cos and sin are simd/math.h's, named here by width.
 template <int W>
 inline vfloat<W> exp(const vfloat<W>& x) {
     return map_lanes(x, [](float v) { return std::exp(v); });
@@ -41,11 +41,11 @@ inline vfloat<W> expm1(const vfloat<W>& x) {
 }
 template <int W>
 inline vfloat<W> cos(const vfloat<W>& x) {
-    return map_lanes(x, [](float v) { return std::cos(v); });
+    return ::raylane::RAYLANE_ISA_NS::cos(x);
 }
 template <int W>
 inline vfloat<W> sin(const vfloat<W>& x) {
-    return map_lanes(x, [](float v) { return std::sin(v); });
+    return ::raylane::RAYLANE_ISA_NS::sin(x);
 }
 
 inline constexpr float pi = std::numbers::pi_v<float>;
