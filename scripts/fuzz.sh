@@ -52,10 +52,9 @@ max_len_for() {
     esac
 }
 
-# Inputs per target in ci mode: about 20 s each at the rates of a quiet run on the CI machine
-# (2026-12-02: image 3750, obj 28.6k, ply 25k, scene 7.6k inputs per second; the earlier counts
-# took 33–80 s each, three minutes of CI in all; exr 400-2000, the first inputs slowest, so its
-# 10k inputs take 5-25 s). Longer runs: scripts/fuzz.sh SECONDS.
+# Inputs per target in ci mode: counts sized so that each target takes about 20 s on a 2-vCPU
+# machine (a reader's rate differs by an order of magnitude between targets, and exr's first
+# inputs are its slowest). Longer runs: scripts/fuzz.sh SECONDS.
 runs_for() {
     case "$1" in
         scene) echo 150000 ;;
