@@ -13,9 +13,8 @@ namespace raylane::RAYLANE_ISA_NS {
 /// True when compact, compress_store, the masked load and store and gather_u8 are single
 /// instructions at width W: AVX-512 (with AVX-512VL at W = 4 and 8). Elsewhere they go lane by
 /// lane through memory (SSE) or through permutes, mask stores and gathers (AVX2), and a loop that
-/// compacts a packet at a time can lose to a branch-free scalar loop: the BVH build's splits took
-/// 8x as long that way at W = 4 (SSE4.2) and 1.5x at W = 8 (AVX2) on the 400k dragon (bench_build,
-/// AMD EPYC with AVX-512).
+/// compacts a packet at a time can then lose to a branch-free scalar loop (the BVH build's splits
+/// do: bench_build times them per set).
 template <int W>
 inline constexpr bool compaction_is_native =
 #if defined(__AVX512F__) && defined(__AVX512VL__)

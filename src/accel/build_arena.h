@@ -11,12 +11,11 @@
 namespace raylane::RAYLANE_ISA_NS::median_detail {
 
 /// One block for all of a build's temporaries, carved in order by take(). Fresh pages are most
-/// of what a first build pays for (the 100k dragon's first build took 32 ms against 7.5 ms
-/// repeated, and a fresh 4 KiB page 1.4–15 us, where they were measured: docs/performance.md,
-/// "How the build works" and "The whole command"), so a block of large_block_bytes (2 MiB) or
-/// more is huge pages (map_pages: one fault per 2 MiB, and few TLB misses in the radix sort's
-/// scatter), one of populated_from (1 MiB) up to that an anonymous mapping whose 4 KiB pages the
-/// kernel faults in with one call (MAP_POPULATE), a smaller one the heap's. Given back when the
+/// of what a first build pays for beyond a repeated one (bench_build's BM_BuildMedianFirst
+/// against BM_BuildMedian: docs/performance.md, "Building"), so a block of large_block_bytes
+/// (2 MiB) or more is huge pages (map_pages: one fault per 2 MiB, and few TLB misses in the radix
+/// sort's scatter), one of populated_from (1 MiB) up to that an anonymous mapping whose 4 KiB pages
+/// the kernel faults in with one call (MAP_POPULATE), a smaller one the heap's. Given back when the
 /// build ends (unmap_pages keeps the newest huge-page blocks for the next build).
 class TempBlock {
   public:

@@ -61,11 +61,10 @@ void finish_nodes(std::vector<BvhNode, OverwriteAllocator<BvhNode>>& nodes, Grow
 /// lists and items for median_subtree primitives, the selects' keys (2 max(median_subtree,
 /// sampled_from)) and a histogram of histogram_counts. The arrays of n are taken from `lent`
 /// when the caller lends 36n bytes it will overwrite afterwards (build_mesh_accel lends the
-/// triangle-vertex array it fills next), else from the block: a fresh 4 KiB page cost 1.4–15 us
-/// where it was measured (docs/performance.md, "The whole command"), and lent memory's pages are
-/// faulted in once for both uses. `phases`, when given, gets the times of the centroids, the
-/// sorts and the splits, measured from `clock`. `paths`, when given, gets the ways the top nodes
-/// were split.
+/// triangle-vertex array it fills next), else from the block: fresh 4 KiB pages are a large
+/// part of a first build's time, and lent memory's pages are faulted in once for both uses.
+/// `phases`, when given, gets the times of the centroids, the sorts and the splits, measured from
+/// `clock`. `paths`, when given, gets the ways the top nodes were split.
 template <class FillCentroids>
 Bvh median_tree(size_t n, const BuildParams& params, FillCentroids&& fill,
                 std::byte* lent = nullptr, BuildPhases* phases = nullptr,
@@ -193,7 +192,7 @@ MeshAccel build_mesh_accel_isa(const Mesh& mesh, const BuildParams& params) {
     // vertices in leaf order (made anew in the lent memory): a gather by id, its addresses
     // asked for ahead (the triangle's indices 128 triangles ahead, its vertices 64 ahead, whose
     // indices are then in cache): far enough to cover a miss to memory, not only to the
-    // last-level cache (docs/performance.md, "How the build works": faster at 400k and 1.6M).
+    // last-level cache, which the meshes of 400k triangles and more outgrow.
     const uint32_t* ids = accel.bvh.prim_ids.data();
     constexpr size_t tri_ahead = 128, vert_ahead = 64;
     for (size_t k = 0; k < n; ++k) {

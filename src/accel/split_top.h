@@ -65,8 +65,8 @@ struct SplitSweep {
 /// (child_key_bounds, select_children) and the four grandchildren made by partition_four, one
 /// pass over the node's primitives where two levels of partition_top make two. Each node of at
 /// most subtree_limit primitives becomes a subtree build on its own compact arrays, which stay
-/// in the cache where the whole tree's lists would not (docs/performance.md, "How the build
-/// works"). The same tree as one subtree build over all the primitives.
+/// in the cache where the whole tree's lists would not. The same tree as one subtree build over
+/// all the primitives.
 struct TopSplitter {
     const TreeOut& out;
     const SubtreeMemory& mem;
