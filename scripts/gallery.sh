@@ -32,7 +32,7 @@ mkdir -p "$out"
 
 # Per-figure options (default --width 400); keep in step with the commands in docs/gallery.md.
 declare -A options=(
-    [fig01b_glossy_sphere]="--width 400 --spp 20"  # 50 spp would take ~100 s on 2 shared cores
+    [fig01b_glossy_sphere]="--width 400 --spp 20"  # the scene's 50 would be the slowest by far
     [fig11_fractal]="--width 440"                  # more detail than 400; 640 takes 366 KB
     # the PNGs stay under 200 KB (blur and noise compress poorly)
     [fig06c_reflection_magenta]="--width 390"
