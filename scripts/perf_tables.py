@@ -29,6 +29,7 @@ Usage:
 scripts/bench.sh writes the JSON and runs this script (docs/performance.md, "Reproducing").
 """
 import argparse
+import io
 import json
 import math
 import os
@@ -218,8 +219,9 @@ def all_tables(m):
 
 # ---- writing -----------------------------------------------------------------------------------
 
-def replace_blocks(text, tables, log=sys.stderr):
+def replace_blocks(text, tables, log=None):
     """The text with each block that has figures replaced; raises ValueError on missing markers."""
+    log = log or sys.stderr
     for name in BLOCKS:
         body = tables.get(name, "")
         begin, end = f"<!-- tables:{name} begin -->", f"<!-- tables:{name} end -->"
@@ -234,7 +236,7 @@ def replace_blocks(text, tables, log=sys.stderr):
     return text
 
 
-def main(argv):
+def main(argv, log=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("json", nargs="*", help="Google Benchmark JSON files")
     parser.add_argument("--write", metavar="MARKDOWN", help="replace the table blocks of this file")
@@ -253,9 +255,9 @@ def main(argv):
         with open(args.write, encoding="utf-8") as f:
             text = f.read()
         try:
-            text = replace_blocks(text, tables)
+            text = replace_blocks(text, tables, log)
         except ValueError as e:
-            print(f"perf_tables: {args.write}: {e}", file=sys.stderr)
+            print(f"perf_tables: {args.write}: {e}", file=log or sys.stderr)
             return 1
         with open(args.write, "w", encoding="utf-8") as f:
             f.write(text)
@@ -352,6 +354,7 @@ EXPECTED = {
 
 def self_test():
     failures = []
+    quiet = io.StringIO()  # the messages the failing cases print on purpose
     m = medians(sample_documents())
     got = all_tables(m)
     for name in BLOCKS:
@@ -371,7 +374,7 @@ def self_test():
         page = os.path.join(tmp, "page.md")
         with open(page, "w", encoding="utf-8") as f:
             f.write(doc)
-        status = main(["--write", page] + paths)
+        status = main(["--write", page] + paths, quiet)
         with open(page, encoding="utf-8") as f:
             written = f.read()
         want = (f"# Page\nbefore\n<!-- tables:intersect begin -->\n{EXPECTED['intersect']}\n"
@@ -383,13 +386,13 @@ def self_test():
             failures.append(f"--write: status {status}, wrote\n{written}")
         with open(page, "w", encoding="utf-8") as f:
             f.write(doc)
-        status = main(["--write", page, paths[0]])  # intersect only: the frame block stays
+        status = main(["--write", page, paths[0]], quiet)  # intersect only: the frame block stays
         with open(page, encoding="utf-8") as f:
             if status != 0 or "old frame" not in f.read():
                 failures.append("--write with intersect figures only changed the frame block")
         with open(page, "w", encoding="utf-8") as f:
             f.write(doc.replace("<!-- tables:frame end -->", ""))
-        if main(["--write", page] + paths) != 1:
+        if main(["--write", page] + paths, quiet) != 1:
             failures.append("--write accepted a block without its end marker")
     for f in failures:
         print(f"perf_tables self-test: {f}", file=sys.stderr)
