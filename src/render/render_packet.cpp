@@ -128,6 +128,9 @@ struct TileBuffers {
     std::vector<int32_t> order, material_count;
     int32_t pixel[max_block_rays];  ///< each tile slot's image pixel
     float acc_r[max_slots], acc_g[max_slots], acc_b[max_slots];
+    /// The radiance of each path of a pass (index = its entry in `paths`), added to its slot
+    /// after the pass in queue order.
+    std::vector<float> path_r, path_g, path_b;
 };
 
 /// Packets for a whole queue (the stream traversals take every ray of a pass at once): a
@@ -228,10 +231,10 @@ void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q,
         for (int p = 0; p < count; ++p) {
             for_each_active(mask_andnot(active[p], occluded[p]), [&](int l) {
                 const size_t i = static_cast<size_t>(base + p * W + l);
-                const size_t s = static_cast<size_t>(q.slot[i]);
-                b.acc_r[s] += q.cr[i];
-                b.acc_g[s] += q.cg[i];
-                b.acc_b[s] += q.cb[i];
+                const size_t path = static_cast<size_t>(q.path[i]);
+                b.path_r[path] += q.cr[i];
+                b.path_g[path] += q.cg[i];
+                b.path_b[path] += q.cb[i];
             });
         }
     };
@@ -265,7 +268,10 @@ void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q,
 }
 
 /// The colour of every slot (a sample of a pixel) whose camera ray is in b.paths: passes of
-/// trace, Beer's law, misses, sort by material, shade, shadows - until no rays are left.
+/// trace, Beer's law, misses, sort by material, shade, shadows - until no rays are left. A pass
+/// sums each path's terms apart (in the order the scalar path adds them), then adds the paths to
+/// their slots in queue order; the queue's order is the same at every W (sort_by_parent), so the
+/// image is the same bits at every W.
 template <int W, uint32_t F>
 void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParams& params,
                         int32_t first_sample, uint32_t seed, TileBuffers& b, ShadeCounts& counts) {
@@ -278,6 +284,7 @@ void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParam
         const bool camera_pass = first;
         trace_queue<W>(scene, accel, q, first, b.hits);
         first = false;
+        for (auto* v : {&b.path_r, &b.path_g, &b.path_b}) v->assign(q.ox.size(), 0.0f);
         if (b.order.size() < static_cast<size_t>(q.size + W)) b.order.resize(q.ox.size());
         // Beer's law over the distance travelled, misses, and the count of hits per material
         std::fill(b.material_count.begin(), b.material_count.end(), 0);
@@ -304,11 +311,9 @@ void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParam
             const Vec3<W> w = load_vec3<W>(&q.wr[i], &q.wg[i], &q.wb[i]);
             const Vec3<W> l = miss_radiance<W>(scene, load<W>(&q.env_map[i]), dir, miss);
             const Vec3<W> add = w * l;
-            for_each_active(miss, [&](int k) {
-                const size_t sl = static_cast<size_t>(q.slot[i + size_t(k)]);
-                b.acc_r[sl] += get(add.x, k), b.acc_g[sl] += get(add.y, k);
-                b.acc_b[sl] += get(add.z, k);
-            });
+            store(&b.path_r[i], select(miss, add.x, vfloat<W>(0.0f)));
+            store(&b.path_g[i], select(miss, add.y, vfloat<W>(0.0f)));
+            store(&b.path_b[i], select(miss, add.z, vfloat<W>(0.0f)));
         }
         // counting sort of the hits by material (stable: tile order within a material)
         for (size_t m = 1; m <= materials; ++m) b.material_count[m] += b.material_count[m - 1];
@@ -319,9 +324,9 @@ void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParam
             b.order[size_t(b.material_count[m]++)] = i;
         }
         // shade each material's hits W at a time (material_count[m] is now the end of m)
-        const ShadeTarget target{.acc_r = b.acc_r,
-                                 .acc_g = b.acc_g,
-                                 .acc_b = b.acc_b,
+        const ShadeTarget target{.path_r = b.path_r.data(),
+                                 .path_g = b.path_g.data(),
+                                 .path_b = b.path_b.data(),
                                  .shadows = b.shadows.data(),
                                  .next = &b.next,
                                  .next_inside = &b.next_inside,
@@ -331,14 +336,21 @@ void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParam
         for (size_t m = 0; m < materials; ++m) {
             const int end = b.material_count[m];
             for (int i = begin; i < end; i += W) {
+                const int next = b.next.size, next_inside = b.next_inside.size;
                 shade_batch<W, F>(scene, scene.materials[m], params, seed, slots, q, b.hits,
                                   &b.order[size_t(i)], std::min(W, end - i), target);
+                b.next.sort_by_parent(next), b.next_inside.sort_by_parent(next_inside);
             }
             begin = end;
         }
         for (size_t j = 0; j < scene.lights.size(); ++j) {
             trace_shadows<W>(scene, accel, b.shadows[j], camera_pass, b);
             b.shadows[j].clear();
+        }
+        for (int i = 0; i < q.size; ++i) {
+            const size_t path = static_cast<size_t>(i), s = static_cast<size_t>(q.slot[path]);
+            b.acc_r[s] += b.path_r[path], b.acc_g[s] += b.path_g[path];
+            b.acc_b[s] += b.path_b[path];
         }
         b.next.append(b.next_inside);  // rays inside a medium after the others
         b.next_inside.clear();
@@ -398,6 +410,7 @@ void shade_camera_block(const Scene& scene, const Accel& accel, const ShadeParam
                                .hits = hits[p],
                                .weight = one,
                                .slot = slot[p],
+                               .path = slot[p],  // (unused: PacketTarget adds to value[p])
                                .key = vint<W>(0),
                                .refl_depth = vint<W>(0),
                                .refr_depth = vint<W>(0),
@@ -580,8 +593,8 @@ void wavefront_values(const Scene& scene, const Accel& accel, const RenderParams
         for (int j = 0; j < n; ++j) {
             const RayPacket<W> r = camera_packet<W, F>(frame, spp, params.seed, tp, p, s0 + j);
             push_packet<W>(b.paths, r.org, r.dir, one, one,
-                           tp.slot[p] + vint<W>(j * max_block_rays), zero, zero, zero, none, zero,
-                           tp.active[p]);
+                           tp.slot[p] + vint<W>(j * max_block_rays), none, zero, zero, zero, none,
+                           zero, tp.active[p]);
         }
     }
     shade_tile_samples<W, F>(scene, accel, shade, s0, params.seed, b, counts);

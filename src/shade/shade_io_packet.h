@@ -28,12 +28,13 @@ struct HitArrays {
     }
 };
 
-/// What a batch writes to: the radiance per wavefront slot (one sample of one pixel), the shadow
-/// queues (one per light) and the next pass's queue.
+/// What a batch writes to: the radiance of each path of the pass (index = its entry in the pass's
+/// queue; render_packet.cpp adds them to the wavefront's slots after the pass), the shadow queues
+/// (one per light) and the next pass's queues.
 struct ShadeTarget {
-    float* acc_r = nullptr;
-    float* acc_g = nullptr;
-    float* acc_b = nullptr;
+    float* path_r = nullptr;
+    float* path_g = nullptr;
+    float* path_b = nullptr;
     ShadowQueue* shadows = nullptr;
     PathQueue* next = nullptr;
     /// Rays that travel inside a refractive medium (refracted in, reflected inside): kept apart
@@ -84,15 +85,15 @@ inline Vec3<W> bc(vec3 v) {
     return make_vec3<W>(v.x, v.y, v.z);
 }
 
-/// Adds value * weight to the lanes' pixel slots (lanes may share a slot: one at a time).
+/// Adds value to the lanes' paths (each lane is a path of its own).
 template <int W>
-inline void accumulate(const ShadeTarget& out, const vint<W>& slot, const Vec3<W>& value,
+inline void accumulate(const ShadeTarget& out, const vint<W>& path, const Vec3<W>& value,
                        vmask<W> m) {
     for_each_active(m, [&](int i) {
-        const size_t s = static_cast<size_t>(get(slot, i));
-        out.acc_r[s] += get(value.x, i);
-        out.acc_g[s] += get(value.y, i);
-        out.acc_b[s] += get(value.z, i);
+        const size_t s = static_cast<size_t>(get(path, i));
+        out.path_r[s] += get(value.x, i);
+        out.path_g[s] += get(value.y, i);
+        out.path_b[s] += get(value.z, i);
     });
 }
 
@@ -103,13 +104,13 @@ inline void accumulate(const PacketTarget<W>& out, const vint<W>&, const Vec3<W>
     *out.value = select(m, *out.value + value, *out.value);
 }
 
-/// Queues the `lit` lanes' shadow rays towards sample i of light j (contribution added if the
-/// segment is free).
+/// Queues the `lit` lanes' shadow rays towards sample i of light j (contribution added to the
+/// lane's path if the segment is free).
 template <int W>
 inline void add_shadow_rays(const ShadeTarget& out, size_t j, int, const Vec3<W>& origin,
                             const Vec3<W>& dir, const vfloat<W>& distance,
-                            const Vec3<W>& contribution, const vint<W>& slot, vmask<W> lit) {
-    push_packet<W>(out.shadows[j], origin, dir, distance, contribution, slot, lit);
+                            const Vec3<W>& contribution, const vint<W>& path, vmask<W> lit) {
+    push_packet<W>(out.shadows[j], origin, dir, distance, contribution, path, lit);
 }
 template <int W>
 inline void add_shadow_rays(const PacketTarget<W>& out, size_t j, int i, const Vec3<W>& origin,
@@ -146,7 +147,9 @@ struct ShadeInput {
     RayPacket<W> rays;
     HitPacket<W> hits;
     Vec3<W> weight;
-    vint<W> slot, key, refl_depth, refr_depth, env, pixel;
+    vint<W> slot;  ///< the wavefront slot (sample of a pixel) each lane's path belongs to
+    vint<W> path;  ///< each lane's entry in the pass's queue: where its radiance adds up
+    vint<W> key, refl_depth, refr_depth, env, pixel;
     vint<W> sample;  ///< the sample index of each lane's path (its random numbers)
     vmask<W> local_only;
 };
@@ -190,6 +193,7 @@ inline ShadeInput<W> gather_shade_input(const PathQueue& q, const HitArrays& h,
     in.weight = {gather_lanes<W>(q.wr, ids, active, 0.0f), gather_lanes<W>(q.wg, ids, active, 0.0f),
                  gather_lanes<W>(q.wb, ids, active, 0.0f)};
     in.slot = gather_lanes<W>(q.slot, ids, active, int32_t{0});
+    in.path = select(active, ids, vint<W>(0));
     in.key = gather_lanes<W>(q.key, ids, active, int32_t{0});
     in.refl_depth = gather_lanes<W>(q.reflection_depth, ids, active, int32_t{0});
     in.refr_depth = gather_lanes<W>(q.refraction_depth, ids, active, int32_t{0});

@@ -124,7 +124,7 @@ template <int W, uint32_t F, class Target>
     const BrdfScaling brdf = scene.shading.brdf;
     const Vec3<W> wo = -p.view;
     const Vec3<W> origin = offset_ray_origin(p.position, p.ng, p.reach);
-    accumulate<W>(out, in.slot, local_weight * (vfloat<W>(m.k_a) * p.c_d), active);
+    accumulate<W>(out, in.path, local_weight * (vfloat<W>(m.k_a) * p.c_d), active);
     for (size_t j = 0; j < scene.lights.size(); ++j) {
         const Light& light = scene.lights[j];
         const int n = light_sample_count(light, params);
@@ -150,11 +150,11 @@ template <int W, uint32_t F, class Target>
             const Vec3<W> contribution =
                 local_weight * (((vfloat<W>(sample_weight) * ls.factor) * light_color) * f);
             if (!light.shadows) {
-                accumulate<W>(out, in.slot, contribution, lit);
+                accumulate<W>(out, in.path, contribution, lit);
                 continue;
             }
             out.counts->shadow_rays += uint64_t(count(lit));
-            add_shadow_rays<W>(out, j, i, origin, ls.dir, ls.distance, contribution, in.slot, lit);
+            add_shadow_rays<W>(out, j, i, origin, ls.dir, ls.distance, contribution, in.path, lit);
         }
     }
     if constexpr ((F & feature_glossy) != 0) {
@@ -181,7 +181,7 @@ template <int W, uint32_t F, class Target>
                 const Vec3<W> ray_weight = local_weight * (w * inv_n);
                 out.counts->glossy_rays += uint64_t(count(ok));
                 push_packet<W>(*out.next, origin, wi, ray_weight, bc<W>(vec3(1.0f)), in.slot,
-                               child_keys<W>(in.key, purpose_glossy, id), in.refl_depth,
+                               in.path, child_keys<W>(in.key, purpose_glossy, id), in.refl_depth,
                                in.refr_depth, child_env, vint<W>(1), ok);
             }
         }
@@ -206,7 +206,7 @@ template <int W, class Target>
         select(mirror, o.local ? weight * (one - r) : weight * zero, weight);
     const Vec3<W> mirror_weight = (weight * r) * p.c_s;
     if (o.override_reflected) {
-        accumulate<W>(out, in.slot, mirror_weight * bc<W>(o.reflected_color), mirror);
+        accumulate<W>(out, in.path, mirror_weight * bc<W>(o.reflected_color), mirror);
     } else if (o.reflection) {
         const Vec3<W> dir = reflect_direction<W>(p.view, p.ns);
         // a reflection about a mapped n_s below the geometric surface is discarded
@@ -214,8 +214,9 @@ template <int W, class Target>
         out.counts->reflection_rays += uint64_t(count(traced));
         const vint<W> child_env = m.env_map >= 0 ? vint<W>(m.env_map) : in.env;
         push_packet<W>(*out.next, offset_ray_origin(p.position, p.ng, p.reach), dir, mirror_weight,
-                       bc<W>(vec3(1.0f)), in.slot, child_keys<W>(in.key, purpose_mirror, 0),
-                       in.refl_depth + vint<W>(1), in.refr_depth, child_env, vint<W>(0), traced);
+                       bc<W>(vec3(1.0f)), in.slot, in.path,
+                       child_keys<W>(in.key, purpose_mirror, 0), in.refl_depth + vint<W>(1),
+                       in.refr_depth, child_env, vint<W>(0), traced);
     }
     return local_weight;
 }
@@ -260,7 +261,7 @@ template <int W, class Target>
     traced = mask_andnot(traced, mask_andnot(no_fork, reflection_larger));
     transmits = mask_andnot(transmits, mask_and(no_fork, reflection_larger));
     if (o.override_reflected)
-        accumulate<W>(out, in.slot, (weight * r) * bc<W>(o.reflected_color), reflects);
+        accumulate<W>(out, in.path, (weight * r) * bc<W>(o.reflected_color), reflects);
     if (any(traced)) {
         out.counts->reflection_rays += uint64_t(count(traced));
         const Vec3<W> filter = select(p.entering, bc<W>(no_filter), bc<W>(m.filter));
@@ -271,7 +272,7 @@ template <int W, class Target>
                 inside ? mask_andnot(traced, p.entering) : mask_and(traced, p.entering);
             if (any(lanes))
                 push_packet<W>(inside ? *out.next_inside : *out.next, org_out, reflected_dir,
-                               weight * r, filter, in.slot, child, in.refl_depth,
+                               weight * r, filter, in.slot, in.path, child, in.refl_depth,
                                in.refr_depth + vint<W>(1), child_env, vint<W>(0), lanes);
         }
     }
@@ -285,7 +286,7 @@ template <int W, class Target>
                 inside ? mask_and(transmits, p.entering) : mask_andnot(transmits, p.entering);
             if (any(lanes))
                 push_packet<W>(inside ? *out.next_inside : *out.next, org_in, t_dir,
-                               weight * (one - r), filter, in.slot, child, in.refl_depth,
+                               weight * (one - r), filter, in.slot, in.path, child, in.refl_depth,
                                in.refr_depth + vint<W>(1), child_env, vint<W>(0), lanes);
         }
     }
@@ -322,7 +323,7 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
     const ShadingOptions& o = scene.shading;
     const vmask<W> local_only = mask_and(active, in.local_only);
     if (m.emissive()) {
-        accumulate<W>(out, in.slot, in.weight * bc<W>(m.emission), active);
+        accumulate<W>(out, in.path, in.weight * bc<W>(m.emission), active);
         return;
     }
     const ShadingPointPacket<W> p = shading_point<W, F>(scene, m, in.rays, in.hits, active);
@@ -340,7 +341,7 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
     Vec3<W> local_weight = in.weight;
     if constexpr ((F & feature_reflection) != 0) {
         if (m.reflection > 0.0f) {
-            accumulate<W>(out, in.slot, in.weight * (vfloat<W>(m.k_a_after) * p.c_d), active);
+            accumulate<W>(out, in.path, in.weight * (vfloat<W>(m.k_a_after) * p.c_d), active);
             const vmask<W> mirror = mask_and(mask_andnot(active, local_only),
                                              lt(in.refl_depth, vint<W>(o.max_reflection_depth)));
             if (any(mirror)) local_weight = mirror_term<W>(scene, m, p, in, out, mirror);
