@@ -12,6 +12,7 @@
 #include "core/isa.h"
 #include "python/bindings.h"
 #include "render/compare.h"
+#include "render/primary_ids.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "render/report_metrics.h"

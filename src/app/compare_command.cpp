@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "core/isa.h"
 #include "render/compare.h"
+#include "render/primary_ids.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "render/report_metrics.h"

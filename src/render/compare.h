@@ -1,11 +1,9 @@
-// render: comparing the two paths: image differences and primary-hit agreement.
+// render: comparing the two paths' images: their per-channel differences.
 #pragma once
 
 #include <cstddef>
 
-#include "accel/bvh.h"
 #include "image/film.h"
-#include "scene/scene.h"
 
 namespace raylane {
 
@@ -20,10 +18,5 @@ struct ImageDiff {
     size_t pixels_over_8bit = 0;  ///< pixels with a channel differing by more than 1/255
 };
 ImageDiff diff_images(const Film& a, const Film& b);
-
-/// Primary rays through every pixel centre, traced by the scalar path and by the packet path
-/// of the instruction set in use, at its width: the number of pixels whose hit (object and
-/// primitive) differs.
-size_t primary_id_mismatches(const Scene& scene, const Accel& accel);
 
 }  // namespace raylane

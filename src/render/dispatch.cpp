@@ -1,7 +1,7 @@
 // render: the packet renderer and the primary-hit comparison of the instruction set in use
 // (core/isa.h); each is compiled once per set (render_packet.cpp, primary_ids.cpp).
 #include "core/isa.h"
-#include "render/compare.h"
+#include "render/primary_ids.h"
 #include "render/render_packet.h"
 
 #define RAYLANE_DECLARE(ns)                                                   \

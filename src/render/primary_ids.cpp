@@ -1,12 +1,13 @@
-// render: primary-hit agreement of the two paths (render/compare.h), compiled once per
+// render: primary-hit agreement of the two paths (render/primary_ids.h), compiled once per
 // instruction set; render/dispatch.cpp calls the set in use.
+#include "render/primary_ids.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 
 #include "render/camera_rays.h"
-#include "render/compare.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
 

@@ -10,6 +10,7 @@
 
 #include "io/load_scene.h"
 #include "render/compare.h"
+#include "render/primary_ids.h"
 #include "render/render_scalar.h"
 #include "simd/simd.h"
 #include "support/small_scene.h"
