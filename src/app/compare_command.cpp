@@ -9,7 +9,7 @@
 #include "render/primary_ids.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
-#include "render/report_metrics.h"
+#include "report/report_metrics.h"
 
 namespace raylane {
 namespace {

@@ -1,5 +1,5 @@
 // app: `raylane report SCENE... [--out-dir DIR] [--reference-spp N] [--spp-list 1,2,4,...]
-// [--paths packet,scalar] [--repeats K]`: error against run time (render/report_*.h).
+// [--paths packet,scalar] [--repeats K]`: error against run time (report/report_*.h).
 #include <tbb/info.h>
 
 #include <algorithm>
@@ -16,11 +16,11 @@
 #include "core/error.h"
 #include "core/isa.h"
 #include "image/plot_svg.h"
-#include "render/report_analytic.h"
-#include "render/report_cache.h"
-#include "render/report_metrics.h"
-#include "render/report_sweep.h"
 #include "render/tiles.h"
+#include "report/report_analytic.h"
+#include "report/report_cache.h"
+#include "report/report_metrics.h"
+#include "report/report_sweep.h"
 
 namespace raylane {
 namespace {

@@ -1,5 +1,5 @@
 // Tests of `raylane report` (app/report_command.cpp) through the binary: one-line errors, the
-// cached reference, the analytic reference. render/report_*.cpp: tests/render/report_*_test.cpp.
+// cached reference, the analytic reference. report/report_*.cpp: tests/report/report_*_test.cpp.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -5,7 +5,7 @@
 // a constant environment map: a perfect mirror shows L everywhere, a clear glass sphere shows
 // L (1 - (1 - R) R^(D - 1)) for refraction depth D, which is L as D grows.
 // The white-Lambertian furnace needs diffuse surfaces lit by the environment, which the Whitted
-// renderer does not compute (render/report_analytic.h), and Raylane has no environment importance
+// renderer does not compute (report/report_analytic.h), and Raylane has no environment importance
 // sampling, so §15's pdf-integral test has nothing to run on.
 #include <gtest/gtest.h>
 

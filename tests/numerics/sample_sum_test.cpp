@@ -9,9 +9,9 @@
 #include <random>
 
 #include "image/film.h"
-#include "render/report_metrics.h"
 #include "render/sample_sum_packet.h"
 #include "render/sample_sum_scalar.h"
+#include "report/report_metrics.h"
 #include "simd/lanes.h"
 #include "support/widths.h"
 

@@ -1,4 +1,4 @@
-// Test support: the scenes of the report's tests (tests/render/report_*_test.cpp).
+// Test support: the scenes of the report's tests (tests/report/report_*_test.cpp).
 #pragma once
 
 #include "io/load_scene.h"

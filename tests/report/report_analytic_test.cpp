@@ -1,13 +1,13 @@
-// Tests of render/report_analytic.cpp: the lit sphere against a converged render, the mirror
+// Tests of report/report_analytic.cpp: the lit sphere against a converged render, the mirror
 // furnace, and scenes that have no analytic reference.
-#include "render/report_analytic.h"
+#include "report/report_analytic.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "render/report_cache.h"
-#include "render/report_metrics.h"
+#include "report/report_cache.h"
+#include "report/report_metrics.h"
 
 namespace raylane {
 namespace {

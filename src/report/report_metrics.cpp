@@ -1,5 +1,5 @@
 // render: error metrics, log-log fits and interpolation of the report (report_metrics.h).
-#include "render/report_metrics.h"
+#include "report/report_metrics.h"
 
 #include <algorithm>
 #include <cmath>

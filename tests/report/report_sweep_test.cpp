@@ -1,6 +1,6 @@
-// Tests of render/report_sweep.cpp: the knobs, the sweep of both paths, the speed-up at equal
+// Tests of report/report_sweep.cpp: the knobs, the sweep of both paths, the speed-up at equal
 // error.
-#include "render/report_sweep.h"
+#include "report/report_sweep.h"
 
 #include <gtest/gtest.h>
 

@@ -11,8 +11,8 @@
 #include "accel/bvh.h"
 #include "image/film.h"
 #include "render/render_params.h"
-#include "render/report_cache.h"
-#include "render/report_metrics.h"
+#include "report/report_cache.h"
+#include "report/report_metrics.h"
 #include "scene/scene.h"
 
 namespace raylane {

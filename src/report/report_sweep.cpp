@@ -1,5 +1,5 @@
 // render: the report's sweep, its curves and the speed-up at equal error (report_sweep.h).
-#include "render/report_sweep.h"
+#include "report/report_sweep.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
-// Tests of render/report_metrics.cpp: the error metrics, the log-log fits and the time at an
+// Tests of report/report_metrics.cpp: the error metrics, the log-log fits and the time at an
 // error. The `raylane report` command: tests/app/report_cli_test.cpp.
-#include "render/report_metrics.h"
+#include "report/report_metrics.h"
 
 #include <gtest/gtest.h>
 

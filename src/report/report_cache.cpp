@@ -1,5 +1,5 @@
 // render: the report's converged references and their cache on disk (report_cache.h).
-#include "render/report_cache.h"
+#include "report/report_cache.h"
 
 #include <algorithm>
 #include <cstdio>

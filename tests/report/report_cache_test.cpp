@@ -1,6 +1,6 @@
-// Tests of render/report_cache.cpp: converged references (the variance from their halves, the
+// Tests of report/report_cache.cpp: converged references (the variance from their halves, the
 // chunks) and their cache on disk (the key, saving and loading).
-#include "render/report_cache.h"
+#include "report/report_cache.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "render/report_metrics.h"
+#include "report/report_metrics.h"
 #include "support/report_scenes.h"
 #include "support/temp_dir.h"
 

@@ -1,5 +1,5 @@
 // render: the report's analytic references (report_analytic.h).
-#include "render/report_analytic.h"
+#include "report/report_analytic.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
