@@ -5,10 +5,10 @@
 
 #include "app/commands.h"
 #include "core/isa.h"
-#include "render/compare.h"
 #include "render/primary_ids.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "report/compare.h"
 #include "report/report_metrics.h"
 
 namespace raylane {

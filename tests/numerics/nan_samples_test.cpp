@@ -9,11 +9,11 @@
 #include <limits>
 
 #include "accel/bvh.h"
-#include "render/compare.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "render/sample_sum_packet.h"
 #include "render/sample_sum_scalar.h"
+#include "report/compare.h"
 #include "scene/scene.h"
 #include "simd/lanes.h"
 #include "support/float_values.h"

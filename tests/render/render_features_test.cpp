@@ -8,9 +8,9 @@
 #include <string>
 
 #include "io/load_scene.h"
-#include "render/compare.h"
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
+#include "report/compare.h"
 #include "support/small_scene.h"
 
 namespace raylane {

@@ -9,9 +9,9 @@
 #include <utility>
 
 #include "io/load_scene.h"
-#include "render/compare.h"
 #include "render/primary_ids.h"
 #include "render/render_scalar.h"
+#include "report/compare.h"
 #include "simd/simd.h"
 #include "support/small_scene.h"
 #include "support/widths.h"

@@ -1,5 +1,5 @@
 // render: comparing the two paths.
-#include "render/compare.h"
+#include "report/compare.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// Tests of render/compare.cpp's image differences: absolute, relative, RMSE, PSNR, 8-bit count.
-#include "render/compare.h"
+// Tests of report/compare.cpp's image differences: absolute, relative, RMSE, PSNR, 8-bit count.
+#include "report/compare.h"
 
 #include <gtest/gtest.h>
 
