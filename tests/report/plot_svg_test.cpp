@@ -1,5 +1,5 @@
-// Tests of image/plot_svg.cpp: well-formed SVG, both series drawn, log axes, escaping.
-#include "image/plot_svg.h"
+// Tests of report/plot_svg.cpp: well-formed SVG, both series drawn, log axes, escaping.
+#include "report/plot_svg.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // image: the SVG log-log plot of plot_svg.h.
-#include "image/plot_svg.h"
+#include "report/plot_svg.h"
 
 #include <algorithm>
 #include <cmath>
