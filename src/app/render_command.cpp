@@ -75,6 +75,7 @@ RenderJob make_job(const RenderOptions& o, Scene scene, const std::vector<Aov>& 
     job.params.threads = worker_threads(o.threads);
     job.params.seed = o.seed;
     job.params.progress = !o.quiet;
+    job.quiet = o.quiet;
     job.scalar = o.path == "scalar";
     job.exr_float = o.exr_float;
     job.strict = o.strict;
@@ -130,7 +131,7 @@ int run_render(const RenderOptions& o) {
         write_frame(job, frame, std::move(part.films), part.stats);
         total.add_counts(part.stats);
     }
-    if (job.first_frame != job.last_frame) {
+    if (job.first_frame != job.last_frame && !job.quiet) {
         std::printf("frames     %d in %.1f s (load %.1f ms, build %.1f ms)\n",
                     job.last_frame - job.first_frame + 1, elapsed_ms(t_frames) / 1000.0,
                     job.load_ms, job.build_ms);
@@ -175,7 +176,8 @@ void add_render_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--tile", o->tile,
                     "render only part I of N of the frame (0 <= I < N), cut along the tile grid "
                     "(to an .exr: a part for `raylane assemble`)");
-    cmd->add_flag("-q,--quiet", o->quiet, "no progress on stderr");
+    cmd->add_flag("-q,--quiet", o->quiet,
+                  "print nothing but warnings and errors (no progress, no summary)");
     cmd->add_flag("--strict", o->strict,
                   "exit with status 3 when any sample is NaN or infinite (the image is written, "
                   "without them)");

@@ -186,8 +186,10 @@ void write_frame(const RenderJob& job, int frame, std::vector<AovFilm> films,
     const PixelRect region = job.region.empty() ? whole : job.region;
     const uint64_t samples = uint64_t(region.width()) * uint64_t(region.height()) *
                              uint64_t(params.spp > 0 ? params.spp : 1);
+    // a part (--crop, --tile) may be all sky: only the whole frame says whether it is black
+    const bool part = !job.region.empty() && !(job.region == whole);
     const std::vector<std::string> warnings =
-        colour ? render_warnings(films[0].film, s, samples) : std::vector<std::string>{};
+        colour && !part ? render_warnings(films[0].film, s, samples) : std::vector<std::string>{};
     const bool exr = image_format(output) == ImageFormat::exr;
     // a PFM or EXR holds an AOV's raw values (scene units, counts); a PNG its mapping (`scale`)
     const bool raw = !colour && !exr && image_format(output) == ImageFormat::pfm;
@@ -207,42 +209,46 @@ void write_frame(const RenderJob& job, int frame, std::vector<AovFilm> films,
 
     const double mrays = s.seconds > 0 ? double(s.total_rays()) / s.seconds * 1e-6 : 0.0;
     if (job.first_frame != job.last_frame) {  // one line a frame
-        std::printf("frame %-4d %s, %.1f ms, %.2f Mrays/s\n", frame, output.c_str(),
-                    1000.0 * s.seconds, mrays);
+        if (!job.quiet)
+            std::printf("frame %-4d %s, %.1f ms, %.2f Mrays/s\n", frame, output.c_str(),
+                        1000.0 * s.seconds, mrays);
         for (const std::string& w : warnings)
             std::printf("warning    frame %d: %s\n", frame, w.c_str());
         std::fflush(stdout);
         return;
     }
-    std::printf("features   %s\n", feature_names(scene_features(job.scene)).c_str());
-    if (job.bvh != "median") std::printf("bvh        %s\n", job.bvh.c_str());
-    std::printf("rays       %llu primary, %llu shadow",
-                static_cast<unsigned long long>(s.primary_rays),
-                static_cast<unsigned long long>(s.shadow_rays));
-    if (s.reflection_rays > 0)
-        std::printf(", %llu reflection", static_cast<unsigned long long>(s.reflection_rays));
-    if (s.refraction_rays > 0)
-        std::printf(", %llu refraction", static_cast<unsigned long long>(s.refraction_rays));
-    if (s.glossy_rays > 0)
-        std::printf(", %llu glossy", static_cast<unsigned long long>(s.glossy_rays));
-    std::printf("\n");
-    std::printf("time       load %.1f ms, build %.1f ms, render %.1f ms\n", job.load_ms,
-                job.build_ms, 1000.0 * s.seconds);
-    std::printf("speed      %.2f Mrays/s\n", mrays);
+    if (!job.quiet) {
+        std::printf("features   %s\n", feature_names(scene_features(job.scene)).c_str());
+        if (job.bvh != "median") std::printf("bvh        %s\n", job.bvh.c_str());
+        std::printf("rays       %llu primary, %llu shadow",
+                    static_cast<unsigned long long>(s.primary_rays),
+                    static_cast<unsigned long long>(s.shadow_rays));
+        if (s.reflection_rays > 0)
+            std::printf(", %llu reflection", static_cast<unsigned long long>(s.reflection_rays));
+        if (s.refraction_rays > 0)
+            std::printf(", %llu refraction", static_cast<unsigned long long>(s.refraction_rays));
+        if (s.glossy_rays > 0)
+            std::printf(", %llu glossy", static_cast<unsigned long long>(s.glossy_rays));
+        std::printf("\n");
+        std::printf("time       load %.1f ms, build %.1f ms, render %.1f ms\n", job.load_ms,
+                    job.build_ms, 1000.0 * s.seconds);
+        std::printf("speed      %.2f Mrays/s\n", mrays);
+        if (!scale.empty()) std::printf("scale      %s\n", scale.c_str());
+        if (raw || (exr && job.aovs.size() == 1 && !colour))
+            std::printf("values     raw %s (docs/scene-format.md, Outputs)\n", aov_name(aov));
+    }
     if (s.bad_samples() > 0)
         std::printf("warning    %llu NaN and %llu infinite samples were left out of their pixels\n",
                     static_cast<unsigned long long>(s.nan_samples),
                     static_cast<unsigned long long>(s.inf_samples));
-    if (!scale.empty()) std::printf("scale      %s\n", scale.c_str());
-    if (raw || (exr && job.aovs.size() == 1 && !colour))
-        std::printf("values     raw %s (docs/scene-format.md, Outputs)\n", aov_name(aov));
     for (const std::string& w : warnings) std::printf("warning    %s\n", w.c_str());
-    std::printf("image      %s\n", output.c_str());
+    if (!job.quiet) std::printf("image      %s\n", output.c_str());
     std::fflush(stdout);
 }
 
 /// What is being rendered, before the progress line.
 void print_header(const RenderJob& job, int ranks) {
+    if (job.quiet) return;
     const int threads =
         job.params.threads > 0 ? job.params.threads : tbb::info::default_concurrency();
     const Camera& cam = job.still;

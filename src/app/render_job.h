@@ -22,6 +22,7 @@ struct RenderJob {
     bool scalar = false;
     bool exr_float = false;  ///< EXR channels as 32-bit floats (parts always are)
     bool strict = false;     ///< --strict: exit with 3 when a sample was NaN or infinite
+    bool quiet = false;      ///< -q: no progress, no summary; warnings and errors only
     PartInfo info;           ///< the scene's hash and the settings, for EXR headers
     std::string output;      ///< a file, or a pattern with a frame number (frame_output)
     int first_frame = 0, last_frame = 0;

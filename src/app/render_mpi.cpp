@@ -10,13 +10,23 @@
 // the one a single process writes, byte for byte (a pixel's value does not depend on who renders
 // its tile). Waits poll with a short pause: a blocking call of Open MPI spins, and would take a
 // core from the ranks that render beside it.
+//
+// When a rank dies, mpirun stops the others with SIGTERM. Rank 0's handler then looks for the
+// workers of its own host that are gone, and rank 0 prints one line: the lost rank, its host and
+// the units it held, and that no image was written. When rank 0 itself fails (a frame it cannot
+// write), it hands out no more units, lets the workers finish the ones they hold, and every rank
+// ends normally; rank 0 prints the error.
 #include <mpi.h>
+#include <signal.h>
 #include <tbb/info.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -145,8 +155,8 @@ struct Gather {
     RenderStats total;     ///< every frame's counts
 
     /// Puts a unit's pixels in its frame, film k's from rgb[k] (row by row, 3 floats a pixel);
-    /// writes the frame when it is whole.
-    void add(int frame, const PixelRect& rect, const std::vector<const float*>& data,
+    /// writes the frame when it is whole (and returns true).
+    bool add(int frame, const PixelRect& rect, const std::vector<const float*>& data,
              const RenderStats& s) {
         auto [it, fresh] = films.try_emplace(frame);
         if (fresh) {  // every pixel comes from some unit
@@ -168,7 +178,7 @@ struct Gather {
         RenderStats& fs = stats[frame];
         fs.add_counts(s);
         total.add_counts(s);
-        if (--missing[frame] > 0) return;
+        if (--missing[frame] > 0) return false;
         // the frame is whole: its time is the wall time since the job (or the last frame) began
         fs.seconds = now_seconds() - start;
         start = now_seconds();
@@ -176,19 +186,182 @@ struct Gather {
         write_frame(job, frame, std::move(it->second), fs);
         writing += thread_seconds() - t;
         films.erase(frame), missing.erase(frame), stats.erase(frame);
+        return true;
     }
 };
+
+/// Where a rank runs: what rank 0 names a lost rank by, and looks for it with.
+struct RankPlace {
+    char host[64];
+    int32_t pid;
+};
+
+/// Every rank's place, on rank 0 (empty on the others).
+std::vector<RankPlace> gather_places(int rank, int ranks) {
+    RankPlace mine{};
+    gethostname(mine.host, sizeof mine.host - 1);
+    mine.pid = static_cast<int32_t>(getpid());
+    std::vector<RankPlace> all(rank == 0 ? size_t(ranks) : 0);
+    MPI_Gather(&mine, sizeof mine, MPI_BYTE, all.data(), sizeof mine, MPI_BYTE, 0, MPI_COMM_WORLD);
+    return all;
+}
+
+/// Rank 0's record of the job: who holds each unit, and the frames written. What it says when
+/// the job is stopped.
+struct JobRecord {
+    static constexpr int waiting = -1;   ///< not handed out yet
+    static constexpr int gathered = -2;  ///< its pixels are in their frame
+    std::vector<int> holder;             ///< per unit: the rank rendering it, or the above
+    std::vector<int> written;            ///< the frames written
+    std::atomic<int> frames_written{0};  ///< written.size(), for the stop handler
+};
+
+/// A line of text built without allocating: the stop handler's (async-signal-safe).
+struct FixedLine {
+    char text[4096];
+    size_t size = 0;
+    FixedLine& operator<<(const char* s) {
+        while (*s != '\0' && size + 2 < sizeof text) text[size++] = *s++;
+        return *this;
+    }
+    FixedLine& operator<<(long v) {
+        char digits[24];
+        int n = 0;
+        unsigned long u =
+            v < 0 ? 0ul - static_cast<unsigned long>(v) : static_cast<unsigned long>(v);
+        do digits[n++] = static_cast<char>('0' + u % 10);
+        while ((u /= 10) != 0);
+        if (v < 0) *this << "-";
+        while (n > 0 && size + 2 < sizeof text) text[size++] = digits[--n];
+        return *this;
+    }
+};
+
+/// What the stop handler reads and writes: set before the render, read in the handler.
+namespace stop {
+constexpr int max_ranks = 4096;
+int ranks = 0;
+pid_t local_pid[max_ranks];  ///< the workers on rank 0's host; 0 for the others
+volatile std::sig_atomic_t gone[max_ranks];
+volatile std::sig_atomic_t signal_number = 0;
+volatile std::sig_atomic_t rendering = 0;  ///< 1 once the units are being rendered
+bool speaks = false;                       ///< rank 0
+const RenderJob* job = nullptr;
+const Unit* units = nullptr;
+size_t unit_count = 0;
+const RankPlace* places = nullptr;
+const JobRecord* record = nullptr;
+}  // namespace stop
+
+/// Adds the units rank r holds, as "frame F rows A-B" (no frame for a still; columns when the
+/// unit is a piece of a row), at most four and then how many more.
+void add_held_units(FixedLine& line, int r) {
+    if (stop::record == nullptr) {  // before the render
+        line << "no unit yet";
+        return;
+    }
+    const RenderJob& job = *stop::job;
+    const int full_width = job.region.empty() ? job.still.width : job.region.width();
+    long n = 0;
+    for (size_t u = 0; u < stop::unit_count; ++u) {
+        if (stop::record->holder[u] != r || n++ >= 4) continue;
+        const Unit& unit = stop::units[u];
+        line << (n > 1 ? ", " : "");
+        if (job.first_frame != job.last_frame) line << "frame " << long(unit.frame) << " ";
+        line << "rows " << long(unit.rect.y0) << "-" << long(unit.rect.y1 - 1);
+        if (unit.rect.width() != full_width)
+            line << " x " << long(unit.rect.x0) << "-" << long(unit.rect.x1 - 1);
+    }
+    if (n == 0) line << "no unit";
+    if (n > 4) line << " and " << (n - 4) << " more units";
+}
+
+/// Adds what was written before the job stopped.
+void add_written(FixedLine& line) {
+    const int n = stop::record != nullptr ? stop::record->frames_written.load() : 0;
+    if (n == 0) {
+        line << "no image was written";
+    } else {
+        line << long(n) << (n == 1 ? " frame was" : " frames were") << " written, no other";
+    }
+}
+
+/// Rank 0's line when the job is stopped: the lost workers of its host, with what they held; or,
+/// when none of them is gone (a rank on another host, or an interrupt), the signal and who held
+/// what.
+void write_stopped_line(int sig) {
+    FixedLine line;
+    line << "raylane: ";
+    bool lost = false;
+    for (int r = 1; r < stop::ranks; ++r) {
+        if (!stop::gone[r]) continue;
+        line << (lost ? "; " : "") << "rank " << long(r) << " (host " << stop::places[r].host
+             << ", pid " << long(stop::places[r].pid) << ") was lost while it held ";
+        add_held_units(line, r);
+        lost = true;
+    }
+    if (lost) {
+        line << "; mpirun stopped the other ranks and ";
+        add_written(line);
+    } else {
+        line << "stopped by signal " << long(sig)
+             << " (mpirun stops every rank when one is lost or the job is interrupted; its own "
+                "message names the rank) before the job was done; ";
+        add_written(line);
+        for (int r = 1; r < stop::ranks && stop::record != nullptr; ++r) {
+            line << "; rank " << long(r) << " (host " << stop::places[r].host << ") held ";
+            add_held_units(line, r);
+        }
+    }
+    line.text[line.size++] = '\n';
+    (void)!write(STDERR_FILENO, line.text, line.size);
+}
+
+/// SIGTERM or SIGINT under mpirun, which sends SIGTERM to every rank when one dies. Rank 0 looks
+/// for the workers of its host that no longer exist (mpirun has reaped a lost one before it
+/// stops the others) and says so at once: mpirun stops forwarding a rank's output soon after.
+/// Then the render stops at the next tile, and the process ends (render_over_mpi).
+extern "C" void on_stop_under_mpi(int sig) {
+    const int saved = errno;
+    stop::signal_number = sig;
+    for (int r = 1; r < stop::ranks; ++r)
+        if (stop::local_pid[r] > 0 && kill(stop::local_pid[r], 0) != 0 && errno == ESRCH)
+            stop::gone[r] = 1;
+    if (stop::speaks) write_stopped_line(sig);
+    if (!stop::rendering) _exit(128 + sig);  // loading or building: nothing to stop at
+    request_cancel();
+    std::signal(sig, SIG_DFL);  // the next one terminates
+    errno = saved;
+}
+
+/// Gives the stop handler every rank's place, and the workers of rank 0's host to watch.
+void watch_ranks(const std::vector<RankPlace>& places) {
+    stop::places = places.data();
+    stop::ranks = std::min<int>(static_cast<int>(places.size()), stop::max_ranks);
+    for (int r = 1; r < stop::ranks; ++r) {
+        const bool here =
+            std::strncmp(places[size_t(r)].host, places[0].host, sizeof places[0].host) == 0;
+        stop::local_pid[r] = here ? static_cast<pid_t>(places[size_t(r)].pid) : 0;
+    }
+}
+
+/// Gives the stop handler the job, its units and who holds them: what a lost rank held.
+void watch_units(const RenderJob& job, const std::vector<Unit>& units, const JobRecord& record) {
+    stop::job = &job, stop::units = units.data(), stop::unit_count = units.size();
+    stop::record = &record;
+}
 
 /// A pause between two polls of a wait: a blocking MPI call polls without one, and takes a core
 /// from the ranks that render beside it.
 void pause() { std::this_thread::sleep_for(std::chrono::microseconds(1000)); }
 
-/// Waits for n requests, pausing between polls.
+/// Waits for n requests, pausing between polls; throws Cancelled when the job is stopped.
 void wait_all(MPI_Request* requests, int n) {
     for (;;) {
         int done = 0;
         MPI_Testall(n, requests, &done, MPI_STATUSES_IGNORE);
         if (done) return;
+        if (cancel_requested()) throw Cancelled();
         pause();
     }
 }
@@ -216,17 +389,20 @@ constexpr int asks_ahead = 2;
 /// message may need its sender, busy rendering, to move it), takes rank 0's own results from
 /// `take_own(add)` (which returns true once rank 0 renders no more), gathers and writes the
 /// frames. Returns the CPU seconds spent handling messages and pixels (not writing frames, not
-/// pausing); `total` gets every frame's counts.
+/// pausing); `total` gets every frame's counts. If a frame cannot be written, hands out no more
+/// units, receives (and drops) those the workers hold, then throws the error. Throws Cancelled
+/// when the job is stopped, and returns at once when `quit` is set.
 template <class TakeOwn>
 double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int ranks,
-                     bool show_progress, std::atomic<size_t>& next, RenderStats& total,
-                     TakeOwn&& take_own) {
+                     bool show_progress, std::atomic<size_t>& next, const std::atomic<bool>& quit,
+                     JobRecord& record, RenderStats& total, TakeOwn&& take_own) {
     Gather gather(
         job, job.region.empty() ? PixelRect{0, 0, job.still.width, job.still.height} : job.region,
         static_cast<int>(units.size()) / (job.last_frame - job.first_frame + 1));
     Progress progress{"render", units.size(), show_progress && stderr_is_terminal()};
     int nones_left = asks_ahead * (ranks - 1);  // every worker's last asks are answered "none"
-    size_t gathered = 0;
+    size_t gathered = 0, handed_out = 0, received = 0;  // handed out to and received from workers
+    std::exception_ptr failure;                         // a frame that could not be written
     struct Receiving {
         ResultHeader header;
         std::vector<float> pixels;
@@ -234,13 +410,29 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
     };
     std::vector<std::unique_ptr<Receiving>> receiving;
     auto add = [&](size_t unit, const std::vector<const float*>& data, const RenderStats& stats) {
-        gather.add(units[unit].frame, units[unit].rect, data, stats);
-        progress.step();
+        record.holder[unit] = JobRecord::gathered;
         ++gathered;
+        if (failure) return;
+        try {
+            if (gather.add(units[unit].frame, units[unit].rect, data, stats)) {
+                record.written.push_back(units[unit].frame);
+                ++record.frames_written;
+            }
+            progress.step();
+        } catch (const std::exception&) {
+            failure = std::current_exception();
+            next.store(units.size());  // no more units, to anyone
+        }
+    };
+    auto more = [&](bool own_done) {
+        if (!own_done || nones_left > 0) return true;
+        return failure ? received < handed_out : gathered < units.size();
     };
     double busy = 0.0;
     bool own_done = false;
-    while (!own_done || nones_left > 0 || gathered < units.size()) {
+    while (more(own_done)) {
+        if (quit.load()) return busy;
+        if (cancel_requested()) throw Cancelled();
         const double t = thread_seconds(), written = gather.writing;
         bool any = false;
         for (;;) {
@@ -255,7 +447,12 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
                          MPI_STATUS_IGNORE);
                 const size_t u = next.fetch_add(1);
                 int unit = u < units.size() ? static_cast<int>(u) : -1;
-                if (unit < 0) --nones_left;
+                if (unit < 0) {
+                    --nones_left;
+                } else {
+                    record.holder[u] = st.MPI_SOURCE;
+                    ++handed_out;
+                }
                 MPI_Send(&unit, 1, MPI_INT, st.MPI_SOURCE, tag_unit, MPI_COMM_WORLD);
             } else if (st.MPI_TAG == tag_header) {
                 auto r = std::make_unique<Receiving>();
@@ -280,6 +477,7 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
                 std::vector<const float*> data;
                 for (size_t k = 0; k < job.aovs.size(); ++k)
                     data.push_back(r->pixels.data() + k * per_film);
+                ++received;
                 add(size_t(r->header.unit), data, from_header(r->header));
             }
             any = any || done != 0;
@@ -298,6 +496,7 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
             pause();
         }
     }
+    if (failure) std::rethrow_exception(failure);
     progress.finish();
     total = gather.total;
     return busy;
@@ -305,10 +504,12 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
 
 /// Rank 0: a service thread answers the workers as their asks come, gathers the pixels and
 /// writes the frames, while the main thread renders units from the same list. Only the service
-/// thread calls MPI while both run (MPI_THREAD_SERIALIZED).
-MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool show_progress) {
+/// thread calls MPI while both run (MPI_THREAD_SERIALIZED). Both threads end on every path out.
+MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bool show_progress,
+                   JobRecord& record) {
     MpiCosts costs;
     std::atomic<size_t> next{0};  // the next unit to hand out, to a worker or to rank 0
+    std::atomic<bool> quit{false};
     // rank 0's own results, from the main thread to the service thread
     struct Own {
         size_t unit;
@@ -321,29 +522,36 @@ MpiCosts run_rank0(RenderJob& job, const std::vector<Unit>& units, int ranks, bo
     std::exception_ptr service_error;
     std::thread service([&] {
         try {
-            costs.serving =
-                serve_workers(job, units, ranks, show_progress, next, costs.total, [&](auto&& add) {
-                    std::vector<Own> mine;
-                    bool done = false;
-                    {
-                        std::lock_guard<std::mutex> lock(own_mutex);
-                        mine.swap(own);
-                        done = own_done;
-                    }
-                    for (Own& o : mine) add(o.unit, o.result);
-                    return done;
-                });
+            costs.serving = serve_workers(job, units, ranks, show_progress, next, quit, record,
+                                          costs.total, [&](auto&& add) {
+                                              std::vector<Own> mine;
+                                              bool done = false;
+                                              {
+                                                  std::lock_guard<std::mutex> lock(own_mutex);
+                                                  mine.swap(own);
+                                                  done = own_done;
+                                              }
+                                              for (Own& o : mine) add(o.unit, o.result);
+                                              return done;
+                                          });
         } catch (...) {
             service_error = std::current_exception();
         }
     });
-    for (;;) {
-        const size_t u = next.fetch_add(1);
-        if (u >= units.size()) break;
-        PartResult r = render_part(job, units[u].frame, units[u].rect);
-        ++costs.units;
-        std::lock_guard<std::mutex> lock(own_mutex);
-        own.push_back({u, std::move(r)});
+    try {
+        for (;;) {
+            const size_t u = next.fetch_add(1);
+            if (u >= units.size()) break;
+            record.holder[u] = 0;
+            PartResult r = render_part(job, units[u].frame, units[u].rect);
+            ++costs.units;
+            std::lock_guard<std::mutex> lock(own_mutex);
+            own.push_back({u, std::move(r)});
+        }
+    } catch (...) {
+        quit.store(true);
+        service.join();
+        throw;
     }
     const double t = now_seconds();
     {
@@ -417,6 +625,9 @@ int render_over_mpi(const std::function<RenderJob()>& make_job) {
     int rank = 0, ranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    stop::speaks = rank == 0;
+    std::signal(SIGTERM, on_stop_under_mpi);
+    std::signal(SIGINT, on_stop_under_mpi);
     RenderJob job;
     std::string error;
     try {
@@ -432,6 +643,8 @@ int render_over_mpi(const std::function<RenderJob()>& make_job) {
         MPI_Finalize();
         return 2;
     }
+    const std::vector<RankPlace> places = gather_places(rank, ranks);
+    watch_ranks(places);
     // only rank 0 speaks: the others' output would interleave with its own
     if (rank == 0) print_header(job, ranks);
     const double t_build = now_seconds();
@@ -447,13 +660,35 @@ int render_over_mpi(const std::function<RenderJob()>& make_job) {
     job.params.progress = false;
     const std::vector<Unit> units = make_units(job, ranks);
     const double start = now_seconds();
-    const MpiCosts mine =
-        rank == 0 ? run_rank0(job, units, ranks, progress) : run_worker(job, units);
+    JobRecord record;
+    record.holder.assign(units.size(), JobRecord::waiting);
+    watch_units(job, units, record);
+    MpiCosts mine;
+    stop::rendering = 1;
+    std::string failure;  // rank 0 could not write a frame: the others end normally
+    try {
+        mine = rank == 0 ? run_rank0(job, units, ranks, progress, record) : run_worker(job, units);
+    } catch (const Cancelled&) {
+        // mpirun is stopping every rank (rank 0's handler has said why): out before its SIGKILL
+        std::fflush(stdout);
+        std::_Exit(128 + (stop::signal_number != 0 ? int(stop::signal_number) : SIGTERM));
+    } catch (const std::exception& e) {
+        if (rank != 0) throw;
+        failure = e.what();
+    }
     const double seconds = now_seconds() - start;
     // what distribution cost, summed over the workers
     double waited = rank == 0 ? 0.0 : mine.waiting, workers_waited = 0.0;
     MPI_Reduce(&waited, &workers_waited, 1, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
-    if (rank == 0) {
+    if (rank == 0 && !failure.empty()) {
+        MPI_Finalize();
+        FixedLine line;
+        line << "raylane: " << failure.c_str() << "; ";
+        add_written(line);
+        std::fprintf(stderr, "%.*s\n", static_cast<int>(line.size), line.text);
+        return 1;
+    }
+    if (rank == 0 && !job.quiet) {
         std::printf(
             "ranks      %d; rank 0 rendered %lld of %zu units, spent %.1f ms "
             "handing out and gathering, %.1f ms waiting for the last units; the "

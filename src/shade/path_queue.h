@@ -76,8 +76,9 @@ struct PathQueue {
         thread_local std::vector<int32_t> order;
         order.resize(static_cast<size_t>(size - from));
         std::iota(order.begin(), order.end(), from);
-        std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
-            return parent[size_t(a)] < parent[size_t(b)];
+        std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {  // (no allocation)
+            const int32_t pa = parent[size_t(a)], pb = parent[size_t(b)];
+            return pa < pb || (pa == pb && a < b);
         });
         for_each_array([&](auto& v) {
             thread_local std::vector<typename std::decay_t<decltype(v)>::value_type> moved;

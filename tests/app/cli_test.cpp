@@ -15,6 +15,7 @@
 #include "core/isa.h"
 #include "support/cli_run.h"
 #include "support/gzip.h"
+#include "support/temp_dir.h"
 
 namespace {
 
@@ -281,13 +282,65 @@ TEST(Cli, RenderWritesTheImageAndReportsTiming) {
     const std::string png =
         (std::filesystem::temp_directory_path() / "raylane_cli_builtin.png").string();
     std::filesystem::remove(png);
-    const CliRun r = run("render --width 64 -q -o " + png);
+    const CliRun r = run("render --width 64 -o " + png);
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(png));
     EXPECT_GT(std::filesystem::file_size(png), 100u);
     for (const char* key : {"resolution", "rays", "load", "build", "render", "Mrays/s"})
         EXPECT_NE(r.out.find(key), std::string::npos) << key;
     EXPECT_FALSE(std::filesystem::exists(png + ".partial"));
+}
+
+/// -q: nothing but warnings and errors, for a still, frames, parts and a scene with a warning.
+TEST(Cli, QuietPrintsOnlyWarningsAndErrors) {
+    const test::TempDir dir("raylane_cli_quiet_");
+    const std::string still = (dir.path / "q.png").string();
+    CliRun r = run("render --width 32 -q -o " + still);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(still));
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "");
+    r = run("render " RAYLANE_SOURCE_DIR
+            "/scenes/dragon_turntable.json --width 24 --frames 0..1 "
+            "-q -o " +
+            (dir.path / "f_%02d.png").string());
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "");
+    // a scene without lights still says so
+    test::write_file(dir.path / "dark.json",
+                     R"({"version": 1, "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0],
+                         "fov_deg": 40, "resolution": [16, 16]},
+                         "materials": {"m": {"c_d": [1, 1, 1]}},
+                         "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1,
+                                      "material": "m"}]})");
+    r = run("render " + (dir.path / "dark.json").string() + " -q -o " + still);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("warning"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("resolution"), std::string::npos) << r.out;
+}
+
+/// A part of a frame may be black (all sky) while the frame is not: only the whole frame warns
+/// that every pixel is black.
+TEST(Cli, OnlyTheWholeFrameWarnsThatEveryPixelIsBlack) {
+    const test::TempDir dir("raylane_cli_black_");
+    test::write_file(dir.path / "night.json",
+                     R"({"version": 1, "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0],
+                         "fov_deg": 40, "resolution": [32, 32]},
+                         "materials": {"m": {"c_d": [0, 0, 0]}},
+                         "objects": [{"shape": "sphere", "center": [0, 0, 0], "radius": 1,
+                                      "material": "m"}],
+                         "lights": [{"type": "point", "position": [0, 5, -5]}]})");
+    const std::string scene = (dir.path / "night.json").string();
+    const CliRun whole = run("render " + scene + " -o " + (dir.path / "n.png").string());
+    EXPECT_EQ(whole.code, 0) << whole.err;
+    EXPECT_NE(whole.out.find("every pixel is black"), std::string::npos) << whole.out;
+    for (const char* part : {"--tile 1/4", "--crop 0 0 8 8"}) {
+        const CliRun r =
+            run("render " + scene + " " + part + " -o " + (dir.path / "p.exr").string());
+        EXPECT_EQ(r.code, 0) << r.err;
+        EXPECT_EQ(r.out.find("is black"), std::string::npos) << part << ": " << r.out;
+    }
 }
 
 TEST(Cli, MoreThreadsThanCoresRunOnTheCoresWithoutWarnings) {
@@ -449,7 +502,7 @@ TEST(Cli, SahBuildIsAnOptionOfInfoRenderAndCompare) {
     EXPECT_NE(compare.out.find("agree"), std::string::npos);
     const std::string png =
         (std::filesystem::temp_directory_path() / "raylane_cli_sah.png").string();
-    const CliRun render = run("render --width 48 -q --bvh sah -o " + png);
+    const CliRun render = run("render --width 48 --bvh sah -o " + png);
     EXPECT_EQ(render.code, 0) << render.err;
     EXPECT_NE(render.out.find("bvh        sah"), std::string::npos) << render.out;
     std::filesystem::remove(png);

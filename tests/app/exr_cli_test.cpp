@@ -30,7 +30,7 @@ std::string file_bytes(const std::filesystem::path& path) {
 }
 
 // the built-in scene, small
-const std::string small = "render --width 40 --height 30 --spp 2 -q ";
+const std::string small = "render --width 40 --height 30 --spp 2 ";
 
 TEST(ExrCli, FloatExrHoldsThePfmsValuesAndHalfExrTheirHalves) {
     const test::TempDir dir("raylane_exr_cli_");

@@ -22,7 +22,7 @@ const std::string turntable = RAYLANE_SOURCE_DIR "/scenes/dragon_turntable.json"
 TEST(FramesCli, FramesAreFilesOfTheirOwnAndTheSameWhoeverRendersThem) {
     TempDir dir("raylane_frames_");
     const std::string pattern = (dir.path / "f_%03d.png").string();
-    const CliRun r = run("render " + turntable + " -q --width 48 --frames 3..5 -o " + pattern);
+    const CliRun r = run("render " + turntable + " --width 48 --frames 3..5 -o " + pattern);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("frames     3..5 of the animation's 0..71"), std::string::npos) << r.out;
     for (int f = 3; f <= 5; ++f)

@@ -25,7 +25,7 @@ TEST(ModelCli, RenderModelShowsTheModelLit) {
     if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
     TempDir dir("raylane_model_cli_");
     const std::string pfm = (dir.path / "bunny.pfm").string();
-    const CliRun r = run("render " + bunny + " --width 160 -q -o " + pfm);
+    const CliRun r = run("render " + bunny + " --width 160 -o " + pfm);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.out.find("scene      " + bunny), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("resolution 160x90"), std::string::npos) << r.out;
@@ -112,15 +112,14 @@ TEST(ModelCli, ADepthPfmIsInSceneUnitsAndItsPngNamesItsScale) {
                    "lights": [{"type": "point", "position": [0, 5, -5]}]})");
     const std::string scene = (dir.path / "ball.json").string();
     const std::string pfm = (dir.path / "d.pfm").string();
-    const CliRun raw = run("render " + scene + " --aov depth -q -o " + pfm);
+    const CliRun raw = run("render " + scene + " --aov depth -o " + pfm);
     ASSERT_EQ(raw.code, 0) << raw.err;
     EXPECT_NE(raw.out.find("values     raw depth"), std::string::npos) << raw.out;
     const std::optional<Film> film = read_pfm(pfm, 33, 33);
     ASSERT_TRUE(film.has_value());
     EXPECT_NEAR(film->at(16, 16).x, 4.0f, 1e-5f);
     EXPECT_EQ(film->at(0, 0).x, 0.0f) << "a miss";
-    const CliRun png =
-        run("render " + scene + " --aov depth -q -o " + (dir.path / "d.png").string());
+    const CliRun png = run("render " + scene + " --aov depth -o " + (dir.path / "d.png").string());
     ASSERT_EQ(png.code, 0) << png.err;
     EXPECT_NE(png.out.find("scale      depth: log scale, white at 4, black at "), std::string::npos)
         << png.out;

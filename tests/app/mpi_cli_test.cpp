@@ -1,6 +1,7 @@
 // Tests of `raylane render` under mpirun: the image of one process, byte for byte, whatever the
-// number of ranks and threads; one error line when a rank cannot load the scene; no image when
-// a rank dies. In a build without MPI: one line saying so instead of N renders.
+// number of ranks and threads; one error line when a rank cannot load the scene; one line and no
+// image when a rank dies, or when rank 0 cannot write the frame. In a build without MPI: one line
+// saying so instead of N renders.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -56,7 +57,7 @@ TEST(MpiCli, EveryRankCountWritesTheImageOfOneProcess) {
         ASSERT_EQ(one.code, 0) << one.err;
         for (const auto& [ranks, threads] : {std::pair{1, 2}, {2, 1}, {3, 1}, {2, 2}}) {
             const std::string who = std::to_string(ranks) + "x" + std::to_string(threads);
-            const CliRun r = run_command(mpirun(ranks) + RAYLANE_BINARY + " render -q " + c.args +
+            const CliRun r = run_command(mpirun(ranks) + RAYLANE_BINARY + " render " + c.args +
                                          " --threads " + std::to_string(threads) + " -o " +
                                          (dir.path / (who + "_" + c.file)).string());
             ASSERT_EQ(r.code, 0) << c.args << ", " << who << ": " << r.err;
@@ -89,34 +90,92 @@ TEST(MpiCli, ARankThatCannotLoadTheSceneStopsEveryRank) {
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-/// A rank killed with SIGKILL in the middle of a render: mpirun exits non-zero and no image (or
-/// half of one) is left.
-TEST(MpiCli, AKilledRankLeavesNoImage) {
-    TempDir dir("raylane_mpi_");
-    const std::string out = (dir.path / "out.png").string();
-    // rank 1 is the child of mpirun whose environment says so; killed once it has started
+/// Runs `command` in the background, kills the rank-`rank` child of mpirun with `signal` once
+/// rank 0 has begun rendering (its header is out), and waits: the script's output and status.
+CliRun kill_rank_during(const TempDir& dir, const std::string& command, int rank,
+                        const std::string& signal) {
     const std::string script = (dir.path / "kill.sh").string();
+    const std::string out = (dir.path / "stdout.txt").string();
     raylane::test::write_file(
-        script,
-        mpirun(2) + RAYLANE_BINARY + " render -q " + scenes +
-            "fig10_glass_bunny.json --width 160 --spp 256 --threads 1 -o " + out +
-            " &\n"
-            "pid=$!\n"
-            "for i in $(seq 100); do\n"
-            "  sleep 0.1\n"
-            "  for p in $(pgrep -P $pid); do\n"
-            "    if tr '\\0' '\\n' < /proc/$p/environ | grep -qx OMPI_COMM_WORLD_RANK=1; then\n"
-            "      sleep 0.5; kill -9 $p; echo killed rank 1; break 2\n"
-            "    fi\n"
-            "  done\n"
-            "done\n"
-            "wait $pid\n");
-    const CliRun r = run_command("bash " + script);
-    EXPECT_NE(r.out.find("killed rank 1"), std::string::npos) << r.out << r.err;
-    EXPECT_NE(r.code, 0) << r.out << r.err;
+        script, command + " > " + out +
+                    " &\n"
+                    "pid=$!\n"
+                    "for i in $(seq 300); do\n"
+                    "  sleep 0.1\n"
+                    "  grep -q '^path ' " +
+                    out +
+                    " 2>/dev/null || continue\n"
+                    "  for p in $(pgrep -P $pid); do\n"
+                    "    if tr '\\0' '\\n' < /proc/$p/environ | grep -qx OMPI_COMM_WORLD_RANK=" +
+                    std::to_string(rank) +
+                    "; then\n"
+                    "      sleep 0.5; kill -" +
+                    signal + " $p; echo killed rank " + std::to_string(rank) +
+                    "; break 2\n"
+                    "    fi\n"
+                    "  done\n"
+                    "done\n"
+                    "wait $pid\n");
+    CliRun r = run_command("bash " + script);
     std::filesystem::remove(script);
-    for (const auto& entry : std::filesystem::directory_iterator(dir.path))
-        ADD_FAILURE() << "left behind: " << entry.path();
+    std::filesystem::remove(out);
+    return r;
+}
+
+/// A worker killed (SIGKILL, or SIGTERM) in the middle of a frame: the job ends non-zero, rank 0
+/// says in one line which rank was lost, on which host, and what it held; no image (or half of
+/// one) is left.
+TEST(MpiCli, ALostRankEndsTheJobInOneLineAndLeavesNoImage) {
+    for (const std::string signal : {"KILL", "TERM"}) {
+        TempDir dir("raylane_mpi_");
+        const std::string out = (dir.path / "out.png").string();
+        const CliRun r = kill_rank_during(dir,
+                                          mpirun(3) + RAYLANE_BINARY + " render " + scenes +
+                                              "fig10_glass_bunny.json --width 320 --spp 64 "
+                                              "--threads 1 -o " +
+                                              out,
+                                          2, signal);
+        EXPECT_NE(r.out.find("killed rank 2"), std::string::npos) << r.out << r.err;
+        EXPECT_NE(r.code, 0) << r.out << r.err;
+        EXPECT_EQ(lines(r.err), 1u) << signal << ": " << r.err;
+        EXPECT_NE(r.err.find("raylane: rank 2 (host "), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(") was lost while it held rows "), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("no image was written"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("terminate"), std::string::npos) << r.err;
+        for (const auto& entry : std::filesystem::directory_iterator(dir.path))
+            ADD_FAILURE() << "left behind: " << entry.path();
+    }
+}
+
+/// Rank 0 cannot write the frame (its folder is gone by then): the workers finish what they
+/// hold and end, and rank 0 says why in one line, exit code 1.
+TEST(MpiCli, RankZerosOwnFailureEndsTheJobInOneLine) {
+    TempDir dir("raylane_mpi_");
+    const std::filesystem::path folder = dir.path / "frames";
+    std::filesystem::create_directory(folder);
+    const std::string out = (folder / "out.png").string();
+    const std::string script = (dir.path / "gone.sh").string();
+    const std::string header = (dir.path / "stdout.txt").string();
+    raylane::test::write_file(script, mpirun(3) + RAYLANE_BINARY + " render " + scenes +
+                                          "fig10_glass_bunny.json --width 320 --spp 64 "
+                                          "--threads 1 -o " +
+                                          out + " > " + header +
+                                          " &\n"
+                                          "pid=$!\n"
+                                          "until grep -q '^path ' " +
+                                          header +
+                                          " 2>/dev/null; do sleep 0.1; done\n"
+                                          "rmdir " +
+                                          folder.string() +
+                                          "\n"
+                                          "wait $pid\n");
+    const CliRun r = run_command("bash " + script);
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("raylane: " + out + ": cannot open for writing"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("no image was written"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(folder));
 }
 
 #else
