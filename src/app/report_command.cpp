@@ -1,16 +1,19 @@
 // app: `raylane report SCENE... [--out-dir DIR] [--reference-spp N] [--spp-list 1,2,4,...]
-// [--paths packet,scalar] [--repeats K]`: error against run time (report/report_*.h).
+// [--paths packet,scalar] [--repeats K]`: error against run time. The options, the reference
+// (analytic, cached or rendered), progress on stderr and where the files go; the sweep, its
+// table, CSV and plot are report/'s (report_sweep.h, report_table.h, report_csv.h, report_plot.h).
 #include <tbb/info.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <memory>
+#include <optional>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "core/error.h"
@@ -19,8 +22,11 @@
 #include "report/plot_svg.h"
 #include "report/report_analytic.h"
 #include "report/report_cache.h"
-#include "report/report_metrics.h"
+#include "report/report_csv.h"
+#include "report/report_plot.h"
+#include "report/report_speedups.h"
 #include "report/report_sweep.h"
+#include "report/report_table.h"
 
 namespace raylane {
 namespace {
@@ -104,30 +110,6 @@ std::string seconds_left(double start, int done, int total) {
         std::snprintf(buf, sizeof buf, ", %.0f s, ~%.0f s left", spent,
                       spent / done * (total - done));
     return buf;
-}
-
-std::string opt_ratio(const std::optional<double>& v) {
-    if (!v) return "-";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2fx", *v);
-    return buf;
-}
-
-/// Median, min and max of the present values.
-struct Spread {
-    double median = 0, lo = 0, hi = 0;
-    size_t n = 0;
-};
-Spread spread_of(std::vector<double> v) {
-    Spread s;
-    std::erase_if(v, [](double x) { return !std::isfinite(x); });
-    if (v.empty()) return s;
-    std::sort(v.begin(), v.end());
-    s.n = v.size();
-    s.median = s.n % 2 ? v[s.n / 2] : 0.5 * (v[s.n / 2 - 1] + v[s.n / 2]);
-    s.lo = v.front();
-    s.hi = v.back();
-    return s;
 }
 
 struct LoadedScene {
@@ -259,219 +241,6 @@ std::vector<SweepPoint> run_scene_sweep(const LoadedScene& ls, const Accel& acce
     return points;
 }
 
-/// Packet over scalar, when the sweep has both paths: the speed-up at equal RMSE of each packet
-/// point, and the ratios whose spread the summary lines give.
-struct Speedups {
-    bool both = false;  ///< both paths were swept (else everything below is empty)
-    std::map<std::pair<SweepKnob, int>, std::optional<double>> at_equal_rmse;  ///< (knob, samples)
-    std::vector<double> speedups, time_ratios, efficiency_ratios;
-    std::optional<double> of(const SweepPoint& pt) const {
-        const auto it = at_equal_rmse.find({pt.knob, pt.samples});
-        return it == at_equal_rmse.end() ? std::nullopt : it->second;
-    }
-};
-
-Speedups speedups_of(const std::vector<SweepPoint>& points, const SweepParams& sp) {
-    Speedups out;
-    out.both = std::count(sp.paths.begin(), sp.paths.end(), RenderPath::packet) &&
-               std::count(sp.paths.begin(), sp.paths.end(), RenderPath::scalar);
-    if (!out.both) return out;
-    for (SweepKnob k : sp.knobs) {
-        const Curve s = curve_of(points, RenderPath::scalar, k);
-        const Curve p = curve_of(points, RenderPath::packet, k);
-        const auto su = speedup_at_equal_error(s, p);
-        for (size_t i = 0; i < p.samples.size(); ++i) {
-            out.at_equal_rmse[{k, int(p.samples[i])}] = su[i];
-            if (su[i]) out.speedups.push_back(*su[i]);
-            if (p.seconds[i] > 0) out.time_ratios.push_back(s.seconds[i] / p.seconds[i]);
-        }
-        // efficiency 1 / (relMSE t) at equal samples, packet over scalar
-        const auto sp_s = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) {
-            return q.path == RenderPath::scalar && q.knob == k;
-        });
-        const auto sp_p = std::find_if(points.begin(), points.end(), [&](const SweepPoint& q) {
-            return q.path == RenderPath::packet && q.knob == k;
-        });
-        for (size_t i = 0; i < p.samples.size(); ++i) {
-            const SweepPoint& a = *(sp_s + std::ptrdiff_t(i));
-            const SweepPoint& b = *(sp_p + std::ptrdiff_t(i));
-            const double den = b.error.relmse * b.seconds_median;
-            if (den > 0.0) out.efficiency_ratios.push_back(a.error.relmse * a.seconds_median / den);
-        }
-    }
-    return out;
-}
-
-/// The table of the sweep's points; false when a check failed (NaN/Inf, ray counts).
-bool print_sweep_table(const std::vector<SweepPoint>& points, const SweepParams& sp,
-                       const Speedups& speedups) {
-    bool ok = true;
-    std::printf(
-        "metrics RMSE; relMSE eps=%.0e; SMAPE in [0,1] eps=%.0e; time = render only, "
-        "median of %d interleaved runs; errors = mean over seeds 1..%d (+-se)\n",
-        relmse_epsilon, smape_epsilon, sp.repeats, sp.repeats);
-    std::printf("\n%-7s %-6s %7s %9s %8s %10s %9s %10s %8s %4s %9s\n", "path", "knob", "samples",
-                "time[s]", "Mrays/s", "RMSE", "+-se", "relMSE", "SMAPE", "NaN", "speed-up");
-    for (const SweepPoint& pt : points) {
-        const uint64_t bad = pt.error.nan_values + pt.error.inf_values + pt.nan_samples();
-        std::string su;
-        if (speedups.both && pt.path == RenderPath::packet) su = opt_ratio(speedups.of(pt));
-        std::printf("%-7s %-6s %7d %9.4f %8.2f %10.3e %9.1e %10.3e %8.5f %4llu %9s\n",
-                    path_name(pt.path), knob_name(pt.knob), pt.samples, pt.seconds_median,
-                    pt.mrays_per_second(), pt.error.rmse, pt.rmse_se, pt.error.relmse,
-                    pt.error.smape, static_cast<unsigned long long>(bad), su.c_str());
-        if (bad > 0) ok = false;
-        if (!pt.rays_match) {
-            std::printf("error   %s %s %d: ray counts differ from %s at the same seed\n",
-                        path_name(pt.path), knob_name(pt.knob), pt.samples, path_name(sp.paths[0]));
-            ok = false;
-        }
-    }
-    return ok;
-}
-
-/// The slope of each curve against time and against samples.
-void print_fits(const std::vector<SweepPoint>& points, const SweepParams& sp) {
-    std::printf("\nfit log10(RMSE) = a + b log10(x), least squares over the points above:\n");
-    for (SweepKnob k : sp.knobs) {
-        for (RenderPath p : sp.paths) {
-            const Curve c = curve_of(points, p, k);
-            const LineFit ft = fit_loglog(c.seconds, c.rmse);
-            const LineFit fn = fit_loglog(c.samples, c.rmse);
-            std::printf(
-                "  %-6s %-6s against time: b = %6.3f R2 = %.4f   against samples: "
-                "b = %6.3f R2 = %.4f\n",
-                path_name(p), knob_name(k), ft.b, ft.r2, fn.b, fn.r2);
-        }
-    }
-    std::printf(
-        "  (expected b = -0.5 for independent samples, steeper with stratification "
-        "(-0.75 over edges); 1 spp is the pixel centre, not a random sample)\n");
-}
-
-/// Packet over scalar in a few lines: at equal samples, at equal RMSE, from the fits, and the
-/// efficiency. Only when both paths were swept.
-void print_speedup_summary(const std::vector<SweepPoint>& points, const Speedups& speedups) {
-    const Spread st = spread_of(speedups.time_ratios), ss = spread_of(speedups.speedups);
-    const Spread se = spread_of(speedups.efficiency_ratios);
-    std::printf(
-        "equal samples  time scalar/packet: median %.2fx (range %.2f-%.2f, %zu "
-        "points)\n",
-        st.median, st.lo, st.hi, st.n);
-    if (ss.n > 0)
-        std::printf(
-            "equal RMSE     speed-up packet over scalar (log-log interpolation): "
-            "median %.2fx (range %.2f-%.2f, %zu points)\n",
-            ss.median, ss.lo, ss.hi, ss.n);
-    else
-        std::printf("equal RMSE     no packet point within the scalar curve's RMSE range\n");
-    // time to an error X from the fitted lines (X = the packet curve's middle RMSE)
-    const Curve cs = curve_of(points, RenderPath::scalar, SweepKnob::spp);
-    const Curve cp = curve_of(points, RenderPath::packet, SweepKnob::spp);
-    if (!cp.rmse.empty()) {
-        const double x = cp.rmse[cp.rmse.size() / 2];
-        const auto ts = x_at_fit(fit_loglog(cs.seconds, cs.rmse), x);
-        const auto tp = x_at_fit(fit_loglog(cp.seconds, cp.rmse), x);
-        if (ts && tp)
-            std::printf(
-                "time to RMSE %.3g from the fits: scalar %.4f s, packet %.4f s -> "
-                "%.2fx\n",
-                x, *ts, *tp, *ts / *tp);
-    }
-    std::printf(
-        "efficiency     1/(relMSE t), packet over scalar at equal samples: median "
-        "%.2fx (range %.2f-%.2f)\n",
-        se.median, se.lo, se.hi);
-}
-
-/// Writes OUT_DIR/STEM.csv, a row per point; returns its path.
-std::string write_sweep_csv(const LoadedScene& ls, const ReportOptions& o, int threads,
-                            const SweepParams& sp, const Reference& ref,
-                            const std::vector<SweepPoint>& points, const Speedups& speedups) {
-    const int w = ls.scene.camera.width, h = ls.scene.camera.height;
-    std::filesystem::create_directories(o.out_dir);
-    const std::string csv_path = (std::filesystem::path(o.out_dir) / (ls.stem + ".csv")).string();
-    std::string csv =
-        "scene,path,knob,samples,width,height,threads,repeats,seconds_median,seconds_min,"
-        "seconds_max,mrays_per_s,primary_rays,shadow_rays,reflection_rays,refraction_rays,"
-        "glossy_rays,rmse,rmse_se,mse,mse_minus_var_ref,"
-        "relmse,relmse_se,relmse_eps,smape,smape_eps,mean,ref_mean,nan_inf_values,nan_samples,"
-        "speedup_over_scalar,reference,reference_spp,var_ref\n";
-    // the scene's name quoted (RFC 4180: a quote doubled), as a file name may hold , and "
-    std::string csv_stem;
-    for (const char c : ls.stem) csv_stem += c == '"' ? std::string("\"\"") : std::string(1, c);
-    for (const SweepPoint& pt : points) {
-        double lo = INFINITY, hi = 0.0;
-        for (const RenderStats& r : pt.runs)
-            lo = std::min(lo, r.seconds), hi = std::max(hi, r.seconds);
-        const RenderStats first = pt.runs.empty() ? RenderStats{} : pt.runs.front();
-        std::string su;
-        if (speedups.both && pt.path == RenderPath::packet)
-            if (const auto v = speedups.of(pt)) su = std::to_string(*v);
-        char line[1024];
-        std::snprintf(
-            line, sizeof line,
-            "\"%s\",%s,%s,%d,%d,%d,%d,%d,%.6g,%.6g,%.6g,%.6g,%llu,%llu,%llu,%llu,%llu,%.6g,%."
-            "3g,%.6g,%.6g,"
-            "%.6g,%.3g,%g,%.6g,%g,%.6g,%.6g,%llu,%llu,%s,",
-            csv_stem.c_str(), path_name(pt.path), knob_name(pt.knob), pt.samples, w, h, threads,
-            sp.repeats, pt.seconds_median, lo, hi, pt.mrays_per_second(),
-            static_cast<unsigned long long>(first.primary_rays),
-            static_cast<unsigned long long>(first.shadow_rays),
-            static_cast<unsigned long long>(first.reflection_rays),
-            static_cast<unsigned long long>(first.refraction_rays),
-            static_cast<unsigned long long>(first.glossy_rays), pt.error.rmse, pt.rmse_se,
-            pt.error.mse, pt.error.mse - ref.variance, pt.error.relmse, pt.relmse_se,
-            relmse_epsilon, pt.error.smape, smape_epsilon, pt.error.mean, pt.error.ref_mean,
-            static_cast<unsigned long long>(pt.error.nan_values + pt.error.inf_values),
-            static_cast<unsigned long long>(pt.nan_samples()), su.c_str());
-        csv += line;
-        std::snprintf(line, sizeof line, "\"%s\",%d,%.6g\n", ref.kind.c_str(), ref.spp,
-                      ref.variance);
-        csv += line;
-    }
-    write_text_file(csv_path, csv);
-    return csv_path;
-}
-
-/// Writes OUT_DIR/STEM.svg, RMSE against time, a series per (knob, path); returns its path.
-std::string write_sweep_plot(const LoadedScene& ls, const ReportOptions& o, int threads,
-                             const SweepParams& sp, const Reference& ref,
-                             const std::vector<SweepPoint>& points) {
-    const int w = ls.scene.camera.width, h = ls.scene.camera.height;
-    LogLogPlot plot;
-    plot.title = ls.stem + ": RMSE against render time (" + std::to_string(w) + "x" +
-                 std::to_string(h) + ", " + std::to_string(threads) + " threads)";
-    plot.x_label = "render time [s], median of " + std::to_string(sp.repeats);
-    plot.y_label = ref.spp > 0 ? "RMSE against " + std::to_string(ref.spp) + " spp reference"
-                               : "RMSE against the analytic reference";
-    for (SweepKnob k : sp.knobs) {
-        for (RenderPath p : sp.paths) {
-            PlotSeries s;
-            s.label = std::string(path_name(p)) +
-                      (k == SweepKnob::spp ? "" : std::string(", ") + knob_name(k) + " samples");
-            s.marker = p == RenderPath::packet ? PlotMarker::circle : PlotMarker::square;
-            if (k != SweepKnob::spp)
-                s.marker = k == SweepKnob::light ? PlotMarker::triangle : PlotMarker::diamond;
-            for (const SweepPoint& pt : points) {
-                if (pt.path != p || pt.knob != k) continue;
-                s.x.push_back(pt.seconds_median);
-                s.y.push_back(pt.error.rmse);
-                s.y_err.push_back(pt.rmse_se);
-            }
-            plot.series.push_back(std::move(s));
-        }
-    }
-    if (!plot.series.empty() && !plot.series[0].x.empty()) {
-        const size_t mid = plot.series[0].x.size() / 2;
-        plot.reference =
-            ReferenceSlope{-0.5, plot.series[0].x[mid], plot.series[0].y[mid], "slope -1/2"};
-    }
-    const std::string svg_path = (std::filesystem::path(o.out_dir) / (ls.stem + ".svg")).string();
-    write_text_file(svg_path, loglog_svg(plot));
-    return svg_path;
-}
-
 /// Renders one scene's report: the reference, the sweep, the table and fits, the CSV and the
 /// plot. Returns false when a check failed (NaN/Inf, ray counts).
 bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter& rep) {
@@ -486,11 +255,15 @@ bool report_scene(const LoadedScene& ls, const ReportOptions& o, const Reporter&
     const SweepParams sp = scene_sweep_params(o, ls.scene, workers);
     const std::vector<SweepPoint> points = run_scene_sweep(ls, accel, ref.film, sp, rep);
     const Speedups speedups = speedups_of(points, sp);
-    ok = print_sweep_table(points, sp, speedups) && ok;
-    print_fits(points, sp);
-    if (speedups.both) print_speedup_summary(points, speedups);
-    const std::string csv_path = write_sweep_csv(ls, o, threads, sp, ref, points, speedups);
-    const std::string svg_path = write_sweep_plot(ls, o, threads, sp, ref, points);
+    ok = print_sweep_table(stdout, points, sp, speedups) && ok;
+    print_fits(stdout, points, sp);
+    if (speedups.both) print_speedup_summary(stdout, points, speedups);
+    const SweepLabel label{ls.stem, ls.scene.camera.width, ls.scene.camera.height, threads};
+    std::filesystem::create_directories(o.out_dir);
+    const std::string csv_path = (std::filesystem::path(o.out_dir) / (ls.stem + ".csv")).string();
+    write_text_file(csv_path, sweep_csv(label, sp, ref, points, speedups));
+    const std::string svg_path = (std::filesystem::path(o.out_dir) / (ls.stem + ".svg")).string();
+    write_text_file(svg_path, loglog_svg(sweep_plot(label, sp, ref, points)));
     std::printf("csv     %s\nplot    %s\n\n", csv_path.c_str(), svg_path.c_str());
     std::fflush(stdout);
     return ok;

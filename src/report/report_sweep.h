@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "accel/bvh.h"
@@ -54,6 +55,13 @@ struct SweepPoint {
     bool rays_match = true;
     double mrays_per_second() const;  ///< median over the repeats of rays / render time
     uint64_t nan_samples() const;     ///< over all repeats
+};
+
+/// What a sweep's CSV rows and plot title name it by: the scene (its file's stem), the image
+/// size and the threads the renders ran on.
+struct SweepLabel {
+    std::string scene;
+    int width = 0, height = 0, threads = 0;
 };
 
 /// Called before each render: (renders started, renders in all, the point being rendered).
