@@ -128,7 +128,7 @@ void print_scene_header(const LoadedScene& ls, int threads, double build_ms) {
                 build_ms);
 }
 
-/// The scene's analytic reference (error-vs-time.md 2.1), if it has one.
+/// The scene's analytic reference (error-vs-time.md, "Analytic references"), if it has one.
 std::optional<Reference> analytic_scene_reference(const LoadedScene& ls, const Reporter& rep) {
     const double t_analytic = now_seconds();
     std::optional<AnalyticReference> a = analytic_reference(ls.scene);
@@ -138,8 +138,7 @@ std::optional<Reference> analytic_scene_reference(const LoadedScene& ls, const R
     rep.phase(ls.stem + ": analytic reference (" + a->name + ")");
     ref.film = std::move(a->film);
     ref.kind = "analytic: " + a->name;
-    std::printf("ref     analytic (%s; error-vs-time.md 2.1), no noise, %.1f s\n", a->name.c_str(),
-                ref.seconds);
+    std::printf("ref     analytic (%s), no noise, %.1f s\n", a->name.c_str(), ref.seconds);
     return ref;
 }
 

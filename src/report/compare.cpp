@@ -1,4 +1,4 @@
-// render: comparing the two paths.
+// report: the difference of two films (compare.h).
 #include "report/compare.h"
 
 #include <algorithm>

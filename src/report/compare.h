@@ -1,4 +1,5 @@
-// render: comparing the two paths' images: their per-channel differences.
+// report: the difference of two films channel by channel, for `raylane compare` and the tests
+// that compare the two paths' images. Tested by tests/report/compare_test.cpp.
 #pragma once
 
 #include <cstddef>

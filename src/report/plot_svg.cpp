@@ -1,4 +1,4 @@
-// image: the SVG log-log plot of plot_svg.h.
+// report: the SVG log-log plot of plot_svg.h.
 #include "report/plot_svg.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// image: a small dependency-free log-log line plot written as SVG (the plots of `raylane
-// report`, report/report_sweep.h). Tested by tests/report/plot_svg_test.cpp.
+// report: a small dependency-free log-log line plot written as SVG (the plots of `raylane
+// report`, report_plot.h). Tested by tests/report/plot_svg_test.cpp.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// render: the report's analytic references (report_analytic.h).
+// report: the report's analytic references (report_analytic.h).
 #include "report/report_analytic.h"
 
 #include <tbb/blocked_range.h>

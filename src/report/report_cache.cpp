@@ -1,4 +1,4 @@
-// render: the report's converged references and their cache on disk (report_cache.h).
+// report: the report's converged references and their cache on disk (report_cache.h).
 #include "report/report_cache.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// render: the report's converged references (error-vs-time.md section 2): rendered in chunks by
+// report: the converged references (error-vs-time.md, "What it does"): rendered in chunks by
 // either path, and kept on disk under a key of everything they depend on.
 #pragma once
 

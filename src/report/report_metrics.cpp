@@ -1,4 +1,4 @@
-// render: error metrics, log-log fits and interpolation of the report (report_metrics.h).
+// report: error metrics, log-log fits and interpolation of the report (report_metrics.h).
 #include "report/report_metrics.h"
 
 #include <algorithm>

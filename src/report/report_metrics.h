@@ -1,5 +1,5 @@
-// render: the report's error metrics of an image against a reference, and the fits and
-// interpolation on log-log curves of error against time (`raylane report`, error-vs-time.md).
+// report: the error metrics of an image against a reference, and the fits and interpolation
+// on log-log curves of error against time (`raylane report`, error-vs-time.md).
 #pragma once
 
 #include <cstddef>
@@ -13,7 +13,7 @@
 namespace raylane {
 
 // ---------------------------------------------------------------------------------------------
-// Metrics (error-vs-time.md section 1)
+// Metrics (error-vs-time.md, "Definitions")
 
 /// ε of relMSE = mean((x - r)^2 / (r^2 + ε)); printed with every result.
 inline constexpr double relmse_epsilon = 1e-2;
@@ -39,7 +39,7 @@ ErrorMetrics compute_error(const Film& image, const Film& reference,
                            double relmse_eps = relmse_epsilon);
 
 // ---------------------------------------------------------------------------------------------
-// Fits and interpolation on log-log curves (error-vs-time.md section 3)
+// Fits and interpolation on log-log curves (error-vs-time.md, "What it does": the summary)
 
 /// log10 y = a + b log10 x, least squares; r2 = coefficient of determination (1 when the points
 /// lie on the line; 1 also when all y are equal). n = points used: those with finite x, y > 0.
@@ -53,8 +53,8 @@ LineFit fit_loglog(std::span<const double> x, std::span<const double> y);
 /// The median of the values (the mean of the middle two for an even count); 0 for none.
 double median(std::vector<double> values);
 
-/// The x at which a fitted line reaches y: 10^((log10 y - a) / b) (error-vs-time.md 3.3, "time
-/// to reach error X"); nullopt when the fit is unusable (b NaN or 0) or y <= 0.
+/// The x at which a fitted line reaches y: 10^((log10 y - a) / b) (the time to reach an RMSE
+/// from the fitted lines); nullopt when the fit is unusable (b NaN or 0) or y <= 0.
 std::optional<double> x_at_fit(const LineFit& fit, double y);
 
 /// The earliest time at which a curve reaches `error`: linear interpolation in (log t, log error)

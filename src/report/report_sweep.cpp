@@ -1,4 +1,4 @@
-// render: the report's sweep, its curves and the speed-up at equal error (report_sweep.h).
+// report: the sweep, its curves and the speed-up at equal error (report_sweep.h).
 #include "report/report_sweep.h"
 
 #include <algorithm>
@@ -120,7 +120,7 @@ std::vector<SweepPoint> run_sweep(const Scene& scene, const Accel& accel, const 
                                                          static_cast<uint32_t>(1 + rep));
                     const RenderResult r = render_with(pt.path, scene, accel, rp);
                     pt.runs.push_back(r.stats);
-                    // the same work in every path at the same seed (error-vs-time.md 3.4, 2)
+                    // same seed, same work in every path (error-vs-time.md, "What it does")
                     const RenderStats& first = points[index(k, 0, s)].runs.back();
                     if (r.stats.primary_rays != first.primary_rays ||
                         r.stats.shadow_rays != first.shadow_rays ||

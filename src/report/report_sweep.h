@@ -1,4 +1,4 @@
-// render: the report's sweep: renders of both paths over sample counts against a reference,
+// report: the sweep: renders of both paths over sample counts against a reference,
 // their errors and times, and the speed-up of one path over the other at equal error.
 #pragma once
 

@@ -1,9 +1,9 @@
 // Numerical stability suite, shading (numerics.md §15, checklist row 15): the latitude-longitude
 // environment map of shade/texture_scalar.h and texture_packet.h at the poles, on the seam at
 // -x, where u is exactly 1, for tiny, huge, denormal and invalid directions, with garbage in
-// inactive packet lanes; and the Whitted forms of the furnace test (error-vs-time.md §2.1.2) in
-// a constant environment map: a perfect mirror shows L everywhere, a clear glass sphere shows
-// L (1 - (1 - R) R^(D - 1)) for refraction depth D, which is L as D grows.
+// inactive packet lanes; and the Whitted forms of the furnace test (error-vs-time.md, "Analytic
+// references") in a constant environment map: a perfect mirror shows L everywhere, a clear glass
+// sphere shows L (1 - (1 - R) R^(D - 1)) for refraction depth D, which is L as D grows.
 // The white-Lambertian furnace needs diffuse surfaces lit by the environment, which the Whitted
 // renderer does not compute (report/report_analytic.h), and Raylane has no environment importance
 // sampling, so §15's pdf-integral test has nothing to run on.

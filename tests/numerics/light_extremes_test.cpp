@@ -219,9 +219,10 @@ TEST(LightExtremes, LightsLyingOnAndInsideSurfacesRenderWithoutNaN) {
 
 /// A white diffuse plane (Phong material: k_d c_d cos / d^2, no 1/pi) seen from straight above,
 /// under a point light of intensity I at height h: each pixel is I h / (h^2 + x^2)^(3/2) at its
-/// hit point (error-vs-time.md §2.1.3). Light is gathered from the shadow-ray origin, 2^-16 times
-/// the camera ray's reach above the plane (core/offset.h, near y = 0), which lowers the light by
-/// that much: a relative error up to 3 offset / h, allowed for.
+/// hit point (a case error-vs-time.md's "Analytic references" leaves to this test). Light is
+/// gathered from the shadow-ray origin, 2^-16 times the camera ray's reach above the plane
+/// (core/offset.h, near y = 0), which lowers the light by that much: a relative error up to
+/// 3 offset / h, allowed for.
 Scene lit_plane(float h) {
     Scene s;
     s.camera.position = vec3(0.0f, 3.0f, 0.0f);
