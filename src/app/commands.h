@@ -43,6 +43,8 @@ CLI::Validator whole_in(long long lo, long long hi);
 /// passes it on without leading zeros (CLI11 itself reads "010" as octal and clamps larger
 /// values). Use it with transform(): check() would pass on the original text.
 CLI::Validator whole_number();
+/// Checks that a scene argument names a file (scene_file_problem's words when it does not).
+CLI::Validator existing_scene_file();
 /// Checks, before any work, that an image path can be written: a .png, .pfm or .exr extension
 /// (any case), not a directory, in a directory that exists and that this user may write in.
 CLI::Validator image_output();
@@ -60,8 +62,13 @@ void apply_resolution(Camera& camera, int width, int height);
 
 /// The scene a command works on: the built-in scene when `path` is empty, a model file's own
 /// scene (io/model_scene.h) for .obj and .ply, else a JSON scene file. A file that is none of
-/// these (no .json extension and not a JSON object) throws InputError saying what was expected.
+/// these (no .json extension and not a JSON object) throws InputError saying what was expected;
+/// a path that is missing or a folder throws scene_file_problem's line.
 Scene load_command_scene(const std::string& path);
+
+/// Why `path` cannot be a scene or a model: "no such file", "is a folder, not a scene (.json) or a
+/// model (.obj, .ply)", ...; empty when it is a file. The command line and Python say the same.
+std::string scene_file_problem(const std::string& path);
 
 /// Milliseconds since `start` (a steady_clock time point in seconds).
 double elapsed_ms(double start_seconds);

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "app/commands.h"
@@ -56,6 +57,25 @@ CLI::Validator finite_non_negative() {
             return {};
         },
         "NUMBER >= 0", "finite_non_negative");
+}
+
+std::string scene_file_problem(const std::string& path) {
+    std::error_code error;
+    const std::filesystem::file_status status = std::filesystem::status(path, error);
+    if (std::filesystem::is_regular_file(status)) return {};
+    if (std::filesystem::is_directory(status))
+        return "is a folder, not a scene (.json) or a model (.obj, .ply)";
+    if (std::filesystem::exists(status)) return "is not a regular file (a device, pipe or socket)";
+    return "no such file";
+}
+
+CLI::Validator existing_scene_file() {
+    return CLI::Validator(
+        [](std::string& path) -> std::string {
+            const std::string problem = scene_file_problem(path);
+            return problem.empty() ? problem : path + ": " + problem;
+        },
+        "FILE", "existing_scene_file");
 }
 
 CLI::Validator whole_in(long long lo, long long hi) {
@@ -187,6 +207,8 @@ bool starts_like_json(const std::string& path) {
 
 Scene load_command_scene(const std::string& path) {
     if (path.empty()) return make_builtin_scene();
+    if (const std::string problem = scene_file_problem(path); !problem.empty())
+        throw InputError(path + ": " + problem);
     if (!is_model_file(path) && !has_extension(path, ".json") && !starts_like_json(path))
         throw InputError(path +
                          ": neither a scene nor a model: expected a JSON scene (.json) or a "

@@ -97,7 +97,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
         "times: warmed up, the median of --repeats runs per path)");
     cmd->add_option("scene", o->scene_path,
                     "scene JSON file or model (.obj, .ply; default: the built-in scene)")
-        ->check(CLI::ExistingFile);
+        ->check(existing_scene_file());
     cmd->add_option("--spp", o->spp, "samples per pixel (default: the scene's)")
         ->check(whole_in(1, 1 << 20));
     add_threads_option(cmd, o->threads);

@@ -101,7 +101,7 @@ void add_info_command(CLI::App& app, int& exit_code) {
     CLI::App* cmd = app.add_subcommand("info", "print scene and BVH statistics");
     cmd->add_option("scene", *path,
                     "scene JSON file or model (.obj, .ply; default: the built-in scene)")
-        ->check(CLI::ExistingFile);
+        ->check(existing_scene_file());
     add_bvh_option(cmd, *bvh);
     cmd->callback([path, bvh, &exit_code] { exit_code = run_info(*path, *bvh); });
 }

@@ -145,7 +145,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "render a scene (the built-in scene without one)");
     cmd->add_option("scene", o->scene_path, "scene JSON file or model (.obj, .ply)")
-        ->check(CLI::ExistingFile);
+        ->check(existing_scene_file());
     cmd->add_option("-o,--output", o->output,
                     "image to write (.png, .pfm or .exr; default SCENE.png); with --frames, a "
                     "name with a frame number such as frame_%04d.png")

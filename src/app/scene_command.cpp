@@ -30,7 +30,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
         "edit its \"file\"");
     cmd->add_option("model", *model, "model file (.obj, .ply)")
         ->required()
-        ->check(CLI::ExistingFile);
+        ->check(existing_scene_file());
     cmd->callback([model, &exit_code] { exit_code = run_scene(*model); });
 }
 

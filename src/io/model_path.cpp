@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <string_view>
 #include <system_error>
 
 #include "core/error.h"
@@ -39,6 +40,39 @@ void add_dir(std::vector<std::string>& dirs, const fs::path& dir) {
     dirs.push_back(normal);
 }
 
+/// Whether `name` is one of the Stanford 3D Scanning Repository's models (the bunny, the dragon,
+/// the Buddha, the armadillo, Lucy and the XYZ RGB scans), which the scenes name but the
+/// repository does not hold.
+bool is_stanford_model(const std::string& name) {
+    const std::string stem = fs::path(name).stem().string();
+    for (const char* known : {"bunny", "dragon", "happy", "armadillo", "lucy", "xyzrgb"})
+        if (stem.rfind(known, 0) == 0) return true;
+    return false;
+}
+
+/// The folders a relative name was looked for in, by their real names: the scene's folder (or
+/// the current one), then RAYLANE_MODEL_PATH's, or that it is unset.
+std::string searched_folders(const std::string& scene_dir) {
+    auto real = [](const fs::path& dir) {
+        std::error_code error;
+        const fs::path full = fs::weakly_canonical(fs::absolute(dir, error), error);
+        return (error || full.empty() ? dir : full).string();
+    };
+    std::string out = scene_dir.empty() ? "the current folder " + real(".")
+                                        : "the scene's folder " + real(scene_dir);
+    const char* env = std::getenv("RAYLANE_MODEL_PATH");
+    if (env == nullptr || *env == '\0') return out + " (RAYLANE_MODEL_PATH is not set)";
+    std::string list;
+    std::string_view rest(env);
+    while (!rest.empty()) {
+        const size_t colon = rest.find(':');
+        const std::string_view entry = rest.substr(0, colon);
+        if (!entry.empty()) list += (list.empty() ? "" : ", ") + real(fs::path(entry));
+        rest = colon == std::string_view::npos ? std::string_view() : rest.substr(colon + 1);
+    }
+    return out + " and RAYLANE_MODEL_PATH's " + list;
+}
+
 }  // namespace
 
 std::vector<std::string> model_search_dirs(const std::string& scene_dir) {
@@ -65,7 +99,6 @@ std::string find_model(const std::string& name, const std::string& scene_dir, Mo
         throw InputError(shown + ": a file name must not contain a NUL byte");
     }
     const fs::path model(name);
-    std::vector<std::string> searched;
     std::string problem;  // the first candidate that is there but is not a regular file
     auto found = [&](const fs::path& candidate) {
         const std::string why = file_problem(candidate);
@@ -75,24 +108,21 @@ std::string find_model(const std::string& name, const std::string& scene_dir, Mo
     };
     if (model.is_absolute()) {
         if (found(model)) return name;
-        searched.push_back(model.parent_path().string());
     } else {
-        searched = model_search_dirs(scene_dir);
-        for (const std::string& dir : searched) {
+        for (const std::string& dir : model_search_dirs(scene_dir)) {
             fs::path candidate = fs::path(dir) / model;
             if (found(candidate)) return candidate.string();
         }
     }
     if (!problem.empty()) throw InputError(problem);
-    std::string list;
-    for (const std::string& dir : searched) list += (list.empty() ? "" : ", ") + dir;
-    if (kind == ModelKind::texture)
-        throw InputError(name + ": image not found; looked in: " + list +
-                         ". Put its folder in RAYLANE_MODEL_PATH (':'-separated)");
-    throw InputError(name + ": model not found; looked in: " + list +
-                     ". Get it from the Stanford 3D Scanning Repository "
-                     "(https://graphics.stanford.edu/data/3Dscanrep/) or put its folder in "
-                     "RAYLANE_MODEL_PATH (':'-separated)");
+    const std::string what = kind == ModelKind::texture ? "image" : "model";
+    if (model.is_absolute()) throw InputError(name + ": " + what + " not found (no such file)");
+    throw InputError(name + ": " + what + " not found; looked in " + searched_folders(scene_dir) +
+                     ". Put its folder in RAYLANE_MODEL_PATH (':'-separated)" +
+                     (kind == ModelKind::mesh && is_stanford_model(name)
+                          ? ", or get it from the Stanford 3D Scanning Repository "
+                            "(https://graphics.stanford.edu/data/3Dscanrep/)"
+                          : ""));
 }
 
 }  // namespace raylane

@@ -223,6 +223,11 @@ PlyHeader parse_header(std::string_view bytes, const std::string& file) {
         ++line;
         Tokens tokens{text.data(), text.data() + text.size()};
         std::string_view keyword = tokens.next();
+        // a last line without its line end: the file was cut inside the header
+        if (lines.line_end().empty() && keyword != "end_header")
+            fail_line(file, line,
+                      "the file ends inside the header, after " + quoted(text) +
+                          " (no end_header line; is the file cut short?)");
         if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
         if (keyword == "format") {
             parse_format(tokens, file, line, has_format, header);

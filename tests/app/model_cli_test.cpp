@@ -14,6 +14,7 @@ namespace raylane {
 namespace {
 
 using test::CliRun;
+using test::lines;
 using test::run;
 using test::slurp;
 using test::TempDir;
@@ -79,6 +80,21 @@ TEST(ModelCli, AFileThatIsNeitherSceneNorModelSaysWhatWasExpected) {
     const CliRun s = run("scene " + (dir.path / "notes.txt").string());
     EXPECT_EQ(s.code, 2);
     EXPECT_NE(s.err.find("not a model: expected an .obj or .ply file"), std::string::npos) << s.err;
+}
+
+/// A folder given as the scene: every command says so in the same words (and Python too,
+/// tests/python/test_scene.py).
+TEST(ModelCli, AFolderGivenAsTheSceneSaysItIsAFolder) {
+    TempDir dir("raylane_model_cli_");
+    const std::string folder = dir.path.string();
+    for (const char* command : {"render ", "compare ", "info ", "scene "}) {
+        const CliRun r = run(command + folder);
+        EXPECT_EQ(r.code, 2) << command;
+        EXPECT_EQ(lines(r.err), 1u) << r.err;
+        EXPECT_NE(r.err.find(folder + ": is a folder, not a scene (.json) or a model (.obj, .ply)"),
+                  std::string::npos)
+            << command << r.err;
+    }
 }
 
 TEST(ModelCli, RenderWarnsOfAnUnlitSceneACameraThatSeesNothingAndABlackImage) {

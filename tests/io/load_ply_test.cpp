@@ -391,6 +391,17 @@ TEST(LoadPlyErrors, RejectsUnsupportedFormatsAndBadHeaders) {
                      {"test.ply:4:", "count type must be an integer"});
 }
 
+/// A header cut in the middle of a line (a download cut short) says that the file ends there,
+/// not that the half word is unknown.
+TEST(LoadPlyErrors, AHeaderCutMidLineSaysTheFileEndsThere) {
+    expect_ply_error(
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty u",
+        {"test.ply:4:", "the file ends inside the header, after 'property u'", "cut short"});
+    expect_ply_error("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x",
+                     {"test.ply:4:", "the file ends inside the header"});
+    expect_ply_error("ply\nformat ascii 1.0\nelem", {"test.ply:3:", "ends inside the header"});
+}
+
 TEST(LoadPlyErrors, RequiresXyzAndVertexIndices) {
     expect_ply_error(
         "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"

@@ -130,6 +130,15 @@ def test_a_bad_scene_raises_the_command_lines_one_line_error(tmp_path):
     assert str(e.value).startswith(str(path))
 
 
+def test_a_folder_given_as_the_scene_says_so_in_the_command_lines_words(tmp_path):
+    code, _, err = run_cli("render", str(tmp_path))
+    assert code == 2
+    with pytest.raises(raylane.Error) as e:
+        raylane.load_scene(str(tmp_path))
+    assert str(e.value) == str(tmp_path) + ": is a folder, not a scene (.json) or a model (.obj, .ply)"
+    assert err.strip().endswith(str(e.value) + " (see raylane --help)"), err
+
+
 def test_a_missing_scene_or_model_raises_file_not_found(tmp_path):
     with pytest.raises(FileNotFoundError, match="missing.json"):
         raylane.load_scene(str(tmp_path / "missing.json"))
