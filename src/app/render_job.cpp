@@ -127,6 +127,9 @@ void parse_frames(const std::string& text, int frame_count, int& first, int& las
     first = number(text.substr(0, dots));
     last = dots == std::string::npos ? first : number(text.substr(dots + 2));
     if (last < first) throw InputError("--frames: " + text + " ends before it starts");
+    // A..B past the end stops at the last frame: a job array of K frames a job need not work
+    // out its last job's end; a first frame past the end is refused
+    if (dots != std::string::npos && first < frame_count) last = std::min(last, frame_count - 1);
     if (last >= frame_count) {
         std::string why = "--frames: ";
         why.append(text).append(": the scene's animation has ").append(std::to_string(frame_count));

@@ -61,7 +61,7 @@ void write_frame(const RenderJob& job, int frame, std::vector<AovFilm> films,
 int strict_exit_code(const RenderJob& job, const RenderStats& total);
 
 /// The frames A..B of --frames ("A..B", "A", or "all" of the scene's animation), checked against
-/// the animation's frames.
+/// the animation's frames; a range A..B whose end is past the last frame stops there.
 void parse_frames(const std::string& text, int frame_count, int& first, int& last);
 
 /// The part of the frame --crop or --tile names (empty when neither is given): a crop is checked

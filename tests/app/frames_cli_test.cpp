@@ -37,6 +37,19 @@ TEST(FramesCli, FramesAreFilesOfTheirOwnAndTheSameWhoeverRendersThem) {
     EXPECT_EQ(slurp(alone), f4);
 }
 
+/// A range past the animation's end stops at its last frame (a job array of K frames a job: the
+/// last job's range need not be worked out).
+TEST(FramesCli, ARangePastTheEndStopsAtTheLastFrame) {
+    TempDir dir("raylane_frames_");
+    const std::string pattern = (dir.path / "f_%02d.png").string();
+    const CliRun r = run("render " + turntable + " --width 24 --frames 70..75 -o " + pattern);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("frames     70..71 of the animation's 0..71"), std::string::npos) << r.out;
+    EXPECT_TRUE(std::filesystem::exists(dir.path / "f_70.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir.path / "f_71.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path / "f_72.png"));
+}
+
 TEST(FramesCli, BadFramesAndPartsGiveOneLine) {
     TempDir dir("raylane_frames_");
     const std::string out = " -o " + (dir.path / "x.png").string();
@@ -44,8 +57,9 @@ TEST(FramesCli, BadFramesAndPartsGiveOneLine) {
     const std::pair<std::string, std::string> cases[] = {
         {turntable + " --frames 2..1" + frames, "ends before it starts"},
         {turntable + " --frames a..b" + frames, "expected A..B, A or all"},
-        {turntable + " --frames 0..72" + frames, "the scene's animation has 72 frames (0..71)"},
-        {"--frames 0..1" + frames, "has 1 frame (0)"},
+        {turntable + " --frames 72..75" + frames, "the scene's animation has 72 frames (0..71)"},
+        {turntable + " --frames 72" + frames, "the scene's animation has 72 frames (0..71)"},
+        {"--frames 1..2" + frames, "has 1 frame (0)"},
         {turntable + " --frames 0..2" + out, "3 frames need a frame number in the file name"},
         {turntable + " --frames 0..2 -o " + (dir.path / "x_%s.png").string(),
          "a '%' in a file name starts the frame number"},
