@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "io/load_mesh.h"
 #include "io/model_scene.h"
-#include "render/warnings.h"
+#include "report/warnings.h"
 #include "scene/camera_path.h"
 
 namespace raylane {

@@ -15,7 +15,7 @@
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "render/tiles.h"
-#include "render/warnings.h"
+#include "report/warnings.h"
 #include "scene/camera_path.h"
 #include "scene/features.h"
 

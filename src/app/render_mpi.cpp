@@ -42,7 +42,7 @@
 #include "app/render_job.h"
 #include "core/error.h"
 #include "render/tiles.h"
-#include "render/warnings.h"
+#include "report/warnings.h"
 
 namespace raylane {
 namespace {

@@ -1,5 +1,5 @@
-// render: warnings about a scene or a render (warnings.h).
-#include "render/warnings.h"
+// report: warnings about a scene or a render (warnings.h).
+#include "report/warnings.h"
 
 #include <algorithm>
 

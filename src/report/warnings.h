@@ -1,4 +1,4 @@
-// render: what a user should hear about a scene or a render that will not show what they meant
+// report: what a user should hear about a scene or a render that will not show what they meant
 // (the render still runs): one line each, without a trailing newline.
 #pragma once
 

@@ -1,5 +1,5 @@
-// Tests of render/warnings: one line for each scene or render that will not show what was meant.
-#include "render/warnings.h"
+// Tests of report/warnings: one line for each scene or render that will not show what was meant.
+#include "report/warnings.h"
 
 #include <gtest/gtest.h>
 
