@@ -17,7 +17,7 @@ allowed=(
     # the hex digits in order, as a lookup table
     'src/io/read_file.cpp:"0123456789abcdef"'
     'src/io/text_form.cpp:"0123456789abcdef"'
-    'tests/app/scene_hash_test.cpp:"0123456789abcdef"'
+    'tests/distribute/scene_hash_test.cpp:"0123456789abcdef"'
     'tests/image/exr_test.cpp:"0123456789abcdef"'
     'tests/support/sha256.h:"0123456789abcdef"'
 )

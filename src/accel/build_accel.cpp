@@ -17,6 +17,12 @@ Aabb transformed(const Aabb& box, const mat4& m) {
 
 }  // namespace
 
+BuildParams build_params(std::string_view bvh) {
+    BuildParams params;
+    params.method = bvh == "sah" ? BvhBuild::sah : BvhBuild::median;
+    return params;
+}
+
 Aabb object_bounds(const Scene& scene, const Object& object) {
     Aabb box;
     switch (object.kind) {

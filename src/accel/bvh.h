@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "accel/wide_bvh.h"
@@ -52,6 +53,10 @@ struct BuildParams {
     /// machine: BM_BuildMedianSubtree). Any value (from 1) gives the same tree.
     uint32_t median_subtree = default_median_subtree;
 };
+
+/// The build parameters a --bvh value (or the Python module's bvh argument) names: "sah" for
+/// binned SAH, anything else the median split.
+BuildParams build_params(std::string_view bvh);
 
 /// How a median-split build found the splits of its nodes above BuildParams::median_subtree.
 /// Every way gives the same tree; tests use the counts to check that each way was taken.

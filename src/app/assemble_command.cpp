@@ -4,9 +4,9 @@
 #include <memory>
 
 #include "app/commands.h"
-#include "app/part.h"
-#include "app/write_output.h"
 #include "core/error.h"
+#include "distribute/part.h"
+#include "distribute/write_output.h"
 
 namespace raylane {
 namespace {

@@ -4,7 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "accel/bvh.h"
+#include "accel/bvh.h"   // build_params, for --bvh
+#include "core/clock.h"  // now_seconds, elapsed_ms: the commands time their stages
 #include "scene/scene.h"
 
 namespace raylane {
@@ -54,9 +55,6 @@ CLI::Validator image_output();
 /// empty when every one is known.
 std::string unknown_option(const CLI::App& cmd, int argc, char** argv);
 
-/// The build parameters a --bvh value names.
-BuildParams build_params(const std::string& bvh);
-
 /// Applies --width/--height to the camera; one alone keeps the aspect ratio.
 void apply_resolution(Camera& camera, int width, int height);
 
@@ -69,9 +67,5 @@ Scene load_command_scene(const std::string& path);
 /// Why `path` cannot be a scene or a model: "no such file", "is a folder, not a scene (.json) or a
 /// model (.obj, .ply)", ...; empty when it is a file. The command line and Python say the same.
 std::string scene_file_problem(const std::string& path);
-
-/// Milliseconds since `start` (a steady_clock time point in seconds).
-double elapsed_ms(double start_seconds);
-double now_seconds();
 
 }  // namespace raylane

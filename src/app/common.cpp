@@ -169,12 +169,6 @@ std::string unknown_option(const CLI::App& cmd, int argc, char** argv) {
     return {};
 }
 
-BuildParams build_params(const std::string& bvh) {
-    BuildParams params;
-    params.method = bvh == "sah" ? BvhBuild::sah : BvhBuild::median;
-    return params;
-}
-
 std::string version_text() {
     std::string text = std::string("raylane ") + RAYLANE_VERSION + "\n";
     try {
@@ -237,12 +231,5 @@ void apply_resolution(Camera& cam, int width, int height) {
                          std::to_string(cam.height) + " pixels is too large (at most " +
                          std::to_string(max_film_side) + " a side and 2^28 pixels)");
 }
-
-double now_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
-
-double elapsed_ms(double start_seconds) { return 1000.0 * (now_seconds() - start_seconds); }
 
 }  // namespace raylane

@@ -7,10 +7,10 @@
 #include <string>
 
 #include "app/commands.h"
-#include "app/render_job.h"
 #include "core/error.h"
 #include "core/isa.h"
 #include "core/pages.h"
+#include "distribute/render_job.h"
 #include "render/tiles.h"
 
 namespace {

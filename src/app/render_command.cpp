@@ -1,6 +1,6 @@
 // app: `raylane render [SCENE] [-o FILE] [--spp N] [--threads N] [--width W --height H] [--aov A]
 // [--frames A..B] [--crop X0 Y0 X1 Y1 | --tile I/N]`: the options and the plain render, frame
-// after frame; under mpirun, app/render_mpi.cpp. The files are written by write_output.h and
+// after frame; under mpirun, distribute/render_mpi.cpp. The files are written by write_output.h and
 // part.h, which `assemble` shares.
 #include <algorithm>
 #include <cstdio>
@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "app/commands.h"
-#include "app/render_job.h"
 #include "core/error.h"
+#include "distribute/render_job.h"
 #include "io/load_mesh.h"
 #include "io/model_scene.h"
 #include "report/warnings.h"

@@ -1,5 +1,5 @@
-// app: a render's films to PNG, PFM or EXR (write_output.h).
-#include "app/write_output.h"
+// distribute: a render's films to PNG, PFM or EXR (write_output.h).
+#include "distribute/write_output.h"
 
 #include <tbb/task_arena.h>
 

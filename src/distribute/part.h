@@ -1,4 +1,4 @@
-// app: parts of a frame, the EXR files `render` writes for a region and `assemble` joins.
+// distribute: parts of a frame, the EXR files `render` writes for a region and `assemble` joins.
 // A part is a 32-bit float EXR whose display window is the whole frame and whose data window is
 // the region it holds; its header names the scene (raylane:scene) and the render settings the
 // parts of one frame share (raylane:settings).
@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/write_output.h"
+#include "distribute/write_output.h"
 #include "image/exr.h"
 #include "render/render_params.h"
 #include "scene/scene.h"

@@ -1,5 +1,5 @@
-// app: the scene hash of parts (scene_hash.h) follows the scene's files and nothing else.
-#include "app/scene_hash.h"
+// distribute: the scene hash of parts (scene_hash.h) follows the scene's files and nothing else.
+#include "distribute/scene_hash.h"
 
 #include <gtest/gtest.h>
 

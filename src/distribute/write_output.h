@@ -1,4 +1,4 @@
-// app: a render's films to the output file, the one way `render` and `assemble` write them.
+// distribute: a render's films to the output file, the one way `render` and `assemble` write them.
 #pragma once
 
 #include <string>

@@ -1,4 +1,5 @@
-// app: what every frame and part of `raylane render` shares, for the plain and the MPI render.
+// distribute: what every frame and part of `raylane render` shares, for the plain and the MPI
+// render.
 #pragma once
 
 #include <functional>
@@ -6,8 +7,8 @@
 #include <vector>
 
 #include "accel/bvh.h"
-#include "app/part.h"
-#include "app/write_output.h"
+#include "distribute/part.h"
+#include "distribute/write_output.h"
 #include "render/render_params.h"
 #include "scene/scene.h"
 
@@ -81,7 +82,7 @@ bool launched_by_mpi();
 int rank_from_environment();
 
 #ifdef RAYLANE_MPI
-/// Renders a job's frames over the ranks of MPI_COMM_WORLD (app/render_mpi.cpp): every rank
+/// Renders a job's frames over the ranks of MPI_COMM_WORLD (distribute/render_mpi.cpp): every rank
 /// makes the job with `make_job` (loads the scene; an InputError on any rank stops every rank
 /// with one line and exit code 2) and builds the BVH; rows of tiles (or pieces of them) go out
 /// on demand; rank 0 renders too, gathers the pixels and writes every frame. Returns the exit

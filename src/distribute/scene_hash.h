@@ -1,4 +1,5 @@
-// app: a hash that names a scene, so that `assemble` can tell parts of different scenes apart.
+// distribute: a hash that names a scene, so that `assemble` can tell parts of different scenes
+// apart.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
-// app: the scene hash of parts (scene_hash.h).
-#include "app/scene_hash.h"
+// distribute: the scene hash of parts (scene_hash.h).
+#include "distribute/scene_hash.h"
 
 #include <cstdint>
 #include <cstdio>

@@ -1,5 +1,5 @@
-// app: `raylane render` under mpirun: one job over the ranks of MPI_COMM_WORLD (render_job.h,
-// render_over_mpi). Built when CMake finds MPI.
+// distribute: `raylane render` under mpirun: one job over the ranks of MPI_COMM_WORLD
+// (render_job.h, render_over_mpi). Built when CMake finds MPI.
 //
 // The work is a list of units, a row of tiles of a frame each (or a piece of one, when there are
 // many ranks), frame after frame. Units go out on demand: a worker keeps two asks open, so the
@@ -38,9 +38,10 @@
 #include <thread>
 #include <vector>
 
-#include "app/commands.h"
-#include "app/render_job.h"
+#include "accel/bvh.h"
+#include "core/clock.h"
 #include "core/error.h"
+#include "distribute/render_job.h"
 #include "render/tiles.h"
 #include "report/warnings.h"
 

@@ -1,5 +1,5 @@
-// app: a render job's frames, parts, file names and output (render_job.h).
-#include "app/render_job.h"
+// distribute: a render job's frames, parts, file names and output (render_job.h).
+#include "distribute/render_job.h"
 
 #include <tbb/info.h>
 #include <tbb/task_arena.h>

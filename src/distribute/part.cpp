@@ -1,13 +1,13 @@
-// app: writing, reading and joining the parts of a frame (part.h).
-#include "app/part.h"
+// distribute: writing, reading and joining the parts of a frame (part.h).
+#include "distribute/part.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <utility>
 
-#include "app/scene_hash.h"
 #include "core/error.h"
+#include "distribute/scene_hash.h"
 
 namespace raylane {
 
