@@ -1,5 +1,5 @@
 // python: raylane.Mesh and raylane.load_mesh: ray queries against a triangle mesh from NumPy
-// arrays (traverse/intersect_batch.h), and raylane.save_rays, the ray file of bench_intersect.
+// arrays (query/intersect_batch.h), and raylane.save_rays, the ray file of bench_intersect.
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -12,7 +12,7 @@
 #include "io/load_mesh.h"
 #include "io/model_path.h"
 #include "python/bindings.h"
-#include "traverse/intersect_batch.h"
+#include "query/intersect_batch.h"
 
 namespace raylane::python {
 namespace {

@@ -1,6 +1,6 @@
 // bench: `bench_intersect --rays FILE.npy [--mesh MODEL]`: a user's rays (an (N, 6) float32
 // .npy file) against one mesh, through every contender in one run: Raylane's scalar path and,
-// on every instruction set raced (support/isa_sets.h), its packet path (traverse/intersect_batch.h,
+// on every instruction set raced (support/isa_sets.h), its packet path (query/intersect_batch.h,
 // the code behind the Python module's Mesh.intersect: Packet picks blocks or streams per 256
 // rays, Block and Stream force one) and Embree 3 restricted to the same set (rtcIntersect1 / 16 /
 // 1M, rtcOccluded1 / 16 / 1M) when it is installed; every contender writes
@@ -23,10 +23,10 @@
 
 #include "io/load_mesh.h"
 #include "io/model_path.h"
+#include "query/intersect_batch.h"
 #include "support/isa_sets.h"
 #include "support/ray_file.h"
 #include "support/summary.h"
-#include "traverse/intersect_batch.h"
 
 #ifdef RAYLANE_HAVE_EMBREE
 #include "traverse/embree_scene.h"

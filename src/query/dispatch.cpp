@@ -1,7 +1,7 @@
-// traverse: the batch queries of the instruction set in use (core/isa.h), compiled once per set
+// query: the batch queries of the instruction set in use (core/isa.h), compiled once per set
 // (intersect_batch.cpp).
 #include "core/isa.h"
-#include "traverse/intersect_batch.h"
+#include "query/intersect_batch.h"
 
 #define RAYLANE_DECLARE(ns)                                                                      \
     namespace raylane {                                                                          \

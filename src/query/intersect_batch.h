@@ -1,4 +1,4 @@
-// traverse: closest-hit and any-hit queries of a caller's arrays of rays (a NumPy array, a ray
+// query: closest-hit and any-hit queries of a caller's arrays of rays (a NumPy array, a ray
 // file), spread over threads: the scalar path ray by ray, or the packet path with coherent
 // rays as blocks (intersect_block.h) and the others as streams (intersect_stream.h).
 #pragma once

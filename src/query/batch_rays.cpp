@@ -1,6 +1,6 @@
-// traverse: rays_coherent and make_triangle_normals (intersect_batch.h), the parts of the batch
+// query: rays_coherent and make_triangle_normals (intersect_batch.h), the parts of the batch
 // queries that do not depend on the instruction set.
-#include "traverse/batch_rays.h"
+#include "query/batch_rays.h"
 
 #include "traverse/triangle_scalar.h"
 

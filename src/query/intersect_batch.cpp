@@ -1,5 +1,5 @@
-// traverse: queries of a caller's ray arrays over threads (intersect_batch.h).
-#include "traverse/intersect_batch.h"
+// query: queries of a caller's ray arrays over threads (intersect_batch.h).
+#include "query/intersect_batch.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/ray_packet.h"
-#include "traverse/batch_rays.h"
+#include "query/batch_rays.h"
 #include "traverse/intersect_block.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/intersect_stream.h"

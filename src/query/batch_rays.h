@@ -1,4 +1,4 @@
-// traverse: the caller's ray arrays as the batch queries read them (intersect_batch.h): which
+// query: the caller's ray arrays as the batch queries read them (intersect_batch.h): which
 // rays are traced, and the cone test of the automatic coherence choice. Both paths, every
 // instruction set.
 #pragma once
@@ -7,7 +7,7 @@
 #include <cstddef>
 
 #include "core/ray.h"
-#include "traverse/intersect_batch.h"
+#include "query/intersect_batch.h"
 
 namespace raylane {
 

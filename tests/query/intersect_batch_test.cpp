@@ -1,7 +1,7 @@
-// Tests of traverse/intersect_batch.cpp: the packet path over ray arrays (blocks, streams, and the
+// Tests of query/intersect_batch.cpp: the packet path over ray arrays (blocks, streams, and the
 // automatic choice between them) gives the scalar path's hits bit for bit; rays that cannot be
 // traced are misses; strided arrays, per-ray t_max and empty batches.
-#include "traverse/intersect_batch.h"
+#include "query/intersect_batch.h"
 
 #include <gtest/gtest.h>
 
