@@ -98,11 +98,12 @@ def median_seconds(call, repeats=5):
     return statistics.median(times)
 
 
-def bench_intersect(bench, rays_file, mesh, threads, query, isa):
-    """Median Mrays/s of each contender of bench_intersect --rays (5 repetitions) on the
-    instruction set `isa` (Raylane's and Embree's: RAYLANE_ISA)."""
+def bench_intersect(bench, rays_file, mesh, threads, query, isa, min_time):
+    """Median Mrays/s of each contender of bench_intersect --rays (5 repetitions of at least
+    `min_time` seconds) on the instruction set `isa` (Raylane's and Embree's: RAYLANE_ISA)."""
     out = subprocess.run(
         [bench, "--rays", rays_file, "--mesh", mesh, "--benchmark_repetitions=5",
+         f"--benchmark_min_time={min_time}",
          "--benchmark_report_aggregates_only=true", "--benchmark_format=json",
          f"--benchmark_filter=BM_RayFile_({query}_(Packet|Block|Stream|Embree[A-Za-z0-9]*)_"
          f"[^/]+/threads:{threads}/|Build)"],
@@ -128,6 +129,8 @@ def main():
     ap.add_argument("--rays", type=int, default=1_000_000)
     ap.add_argument("--rounds", type=int, default=3,
                     help="rounds of Python and C++ measurements, in turn (default 3)")
+    ap.add_argument("--min-time", type=float, default=0.5,
+                    help="seconds each bench_intersect repetition runs at least (default 0.5)")
     args = ap.parse_args()
     os.environ.setdefault("RAYLANE_MODEL_PATH", os.path.join(SOURCE_DIR, "..", "shared", "models"))
     threads = os.cpu_count()
@@ -164,7 +167,7 @@ def main():
                     seconds = median_seconds(lambda: mesh.occluded(o, d))
                 python_rates.append(n / seconds * 1e-6)
                 rates, build_ms = bench_intersect(args.bench, rays_file, args.mesh, threads, query,
-                                                  isa["in_use"])
+                                                  isa["in_use"], args.min_time)
                 if build_ms is not None:
                     build_cpp.append(build_ms)
                 cpp_rates.append(max(rates.get(k, 0.0) for k in ("Packet", "Block", "Stream")))
