@@ -36,6 +36,7 @@
 
 #ifdef RAYLANE_HAVE_EMBREE
 #include "traverse/embree_scene.h"
+#include "traverse/surface_scalar.h"
 #endif
 
 // each set's packet contenders (intersect_bench_packet.cpp)

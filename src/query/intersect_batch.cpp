@@ -16,6 +16,7 @@
 #include "traverse/intersect_block.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/intersect_stream.h"
+#include "traverse/surface_scalar.h"
 #include "traverse/triangle_scalar.h"
 
 namespace raylane::RAYLANE_ISA_NS {

@@ -21,6 +21,7 @@
 #include "traverse/intersect_block.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_stream.h"
+#include "traverse/surface_packet.h"
 
 namespace raylane::RAYLANE_ISA_NS {
 namespace {

@@ -11,6 +11,7 @@
 #include "render/tiles.h"
 #include "shade/shade_scalar.h"
 #include "traverse/intersect_scalar.h"
+#include "traverse/surface_scalar.h"
 
 namespace raylane {
 namespace {

@@ -29,6 +29,7 @@
 #include "simd/lanes.h"
 #include "traverse/intersect_block.h"
 #include "traverse/intersect_packet.h"
+#include "traverse/surface_packet.h"
 
 namespace raylane::RAYLANE_ISA_NS {
 namespace shade_detail {

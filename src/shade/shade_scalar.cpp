@@ -12,6 +12,7 @@
 #include "shade/optics_scalar.h"
 #include "shade/texture_scalar.h"
 #include "traverse/intersect_scalar.h"
+#include "traverse/surface_scalar.h"
 
 namespace raylane {
 namespace {

@@ -9,6 +9,22 @@
 
 namespace raylane::RAYLANE_ISA_NS {
 
+/// The rays moved into an object's space; t is unchanged. Same products and sums as glm's
+/// mat4 * vec4 on the scalar path: (c0 x + c1 y) + (c2 z + c3 w).
+template <int W>
+inline RayPacket<W> to_object_space(const Object& object, const RayPacket<W>& rays) {
+    if (!object.has_transform) return rays;
+    const mat4& m = object.object_from_world;
+    RayPacket<W> r = rays;
+    auto row = [&](int k, const Vec3<W>& p, float w) {
+        return (vfloat<W>(m[0][k]) * p.x + vfloat<W>(m[1][k]) * p.y) +
+               (vfloat<W>(m[2][k]) * p.z + vfloat<W>(m[3][k] * w));
+    };
+    r.org = {row(0, rays.org, 1.0f), row(1, rays.org, 1.0f), row(2, rays.org, 1.0f)};
+    r.dir = {row(0, rays.dir, 0.0f), row(1, rays.dir, 0.0f), row(2, rays.dir, 0.0f)};
+    return r;
+}
+
 /// The closest hit of each active lane in (t_min, t_max), with the scalar path's tie-break
 /// (smaller t, then object, then primitive). Inactive lanes come back as misses.
 /// `nodes_visited`, when given, counts per lane the BVH nodes tested while the lane was active.
@@ -35,21 +51,5 @@ void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint3
 template <int W>
 vmask<W> intersect_object_any_from(const Scene& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, WideRef start = {});
-
-/// Everything shading needs about W hits, in world space (the twin of SurfacePoint).
-template <int W>
-struct SurfacePacket {
-    Vec3<W> position;
-    Vec3<W> geometric_normal;
-    Vec3<W> shading_normal;
-    vfloat<W> u = vfloat<W>(0.0f), v = vfloat<W>(0.0f);
-    vint<W> material = vint<W>(0);
-};
-
-/// Evaluates position, normals and uv at the active lanes' hits (all must be hits). Mesh hits
-/// are evaluated W at a time; analytic shapes lane by lane through the scalar surface_at.
-template <int W>
-SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
-                            vmask<W> active);
 
 }  // namespace raylane::RAYLANE_ISA_NS

@@ -12,6 +12,15 @@ namespace raylane {
 /// that ties reach the tie-break below (intersect_scalar.cpp: t_limit; same in the packet path).
 inline constexpr int32_t tie_ulps = 4;
 
+/// The ray moved into an object's space; t is unchanged because the map is affine.
+inline Ray to_object_space(const Object& object, const Ray& ray) {
+    if (!object.has_transform) return ray;
+    Ray r = ray;
+    r.org = vec3(object.object_from_world * glm::vec4(ray.org, 1.0f));
+    r.dir = vec3(object.object_from_world * glm::vec4(ray.dir, 0.0f));
+    return r;
+}
+
 /// The closest hit in (ray.t_min, ray.t_max). Ties in t go to the smaller object index, then the
 /// smaller primitive index, so the answer does not depend on traversal order.
 Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
@@ -20,18 +29,5 @@ Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
 /// True when anything is hit in (ray.t_min, ray.t_max) (shadow rays).
 bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
                    TraversalStats* stats = nullptr);
-
-/// Everything shading needs about a hit, in world space.
-struct SurfacePoint {
-    vec3 position{0.0f};
-    vec3 geometric_normal{0.0f, 1.0f, 0.0f};  ///< unit, on the side the shape's winding gives
-    vec3 shading_normal{0.0f, 1.0f, 0.0f};    ///< unit; interpolated vertex normal for meshes
-    vec2 uv{0.0f};
-    uint32_t material = 0;
-};
-
-/// Evaluates position, normals and uv at a hit found by intersect_closest. uv is 0 on spheres
-/// and cylinders whose material reads neither a texture nor a normal map (it would go unused).
-SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit);
 
 }  // namespace raylane

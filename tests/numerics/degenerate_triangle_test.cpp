@@ -14,6 +14,7 @@
 #include "render/render_packet.h"
 #include "render/render_scalar.h"
 #include "support/geometry_support.h"
+#include "traverse/surface_scalar.h"
 
 namespace raylane {
 namespace {

@@ -16,6 +16,8 @@
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
 #include "support/geometry_support.h"
+#include "traverse/surface_packet.h"
+#include "traverse/surface_scalar.h"
 
 namespace raylane {
 namespace {

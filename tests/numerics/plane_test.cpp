@@ -9,6 +9,7 @@
 #include "support/geometry_support.h"
 #include "traverse/plane_packet.h"
 #include "traverse/plane_scalar.h"
+#include "traverse/surface_scalar.h"
 
 namespace raylane {
 namespace {

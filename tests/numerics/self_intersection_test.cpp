@@ -13,6 +13,7 @@
 #include "support/geometry_support.h"
 #include "traverse/box_scalar.h"
 #include "traverse/sphere_scalar.h"
+#include "traverse/surface_scalar.h"
 
 namespace raylane {
 namespace {

@@ -25,6 +25,7 @@
 #include "traverse/intersect_block.h"
 #include "traverse/intersect_scalar.h"
 #include "traverse/intersect_stream.h"
+#include "traverse/surface_scalar.h"
 
 namespace raylane {
 namespace {

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "io/load_mesh.h"
+#include "traverse/surface_scalar.h"
 #include "traverse/triangle_scalar.h"
 
 namespace raylane {

@@ -1,9 +1,11 @@
-// Equivalence of the packet surface_at (traverse/intersect_packet.cpp) with the scalar one: the
+// Equivalence of the packet surface_at (traverse/surface_packet.cpp) with the scalar one: the
 // same position, normals, uv and material bit for bit in every hit lane, at every packet width,
 // for packets of one object (a mesh's triangles gathered W at a time, a plane W at a time) and
 // of several objects (lane by lane): a mesh with normals and uvs of its own (the apple), two
 // meshes in one scene (the apple and the bunny, which has neither), analytic shapes. Inactive
 // lanes hold out-of-range ids, which the packet path must not read.
+#include "traverse/surface_packet.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include "support/widths.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
+#include "traverse/surface_scalar.h"
 
 namespace raylane {
 namespace {
