@@ -1,6 +1,6 @@
 // shade: the packet path's ray queues - rays of a tile waiting to be traced, one array per
 // field (SoA). Grow-only: after a few tiles a thread's queues stop allocating. Used by
-// render_packet.cpp and shade/shade_io_packet.h; the scalar path recurses instead.
+// render/wavefront_packet.h and shade/shade_io_packet.h; the scalar path recurses instead.
 #pragma once
 
 #include <algorithm>
@@ -69,7 +69,7 @@ struct PathQueue {
     /// Puts rays `from`..size in the order of their parents (stable: a parent's children in the
     /// order they were queued). A batch of W hits queues its rays kind by kind, each kind lane by
     /// lane; sorted, the queue's order no longer depends on W, nor does the order in which the
-    /// paths of one slot add up (render_packet.cpp).
+    /// paths of one slot add up (render/wavefront_packet.h).
     void sort_by_parent(int from) {
         const auto first = parent.begin() + from, last = parent.begin() + size;
         if (std::is_sorted(first, last)) return;

@@ -29,8 +29,8 @@ struct HitArrays {
 };
 
 /// What a batch writes to: the radiance of each path of the pass (index = its entry in the pass's
-/// queue; render_packet.cpp adds them to the wavefront's slots after the pass), the shadow queues
-/// (one per light) and the next pass's queues.
+/// queue; render/wavefront_packet.h adds them to the wavefront's slots after the pass), the shadow
+/// queues (one per light) and the next pass's queues.
 struct ShadeTarget {
     float* path_r = nullptr;
     float* path_g = nullptr;

@@ -329,7 +329,7 @@ vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W
 RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
 #undef RAYLANE_INSTANTIATE
 #if defined(__AVX2__)  // W = 1 is among the sse4.2 set's widths; the others trace at W = 1 only
-                       // the bvh-cost image's single rays (render_packet.cpp)
+                       // the bvh-cost image's single rays (render/aov_packet.cpp)
 template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const RayPacket<1>&,
                                            vmask<1>, vint<1>*);
 #endif
