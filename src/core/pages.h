@@ -30,10 +30,10 @@ inline constexpr size_t large_block_bytes = size_t(2) << 20;
 
 /// A block of `bytes` rounded up to whole huge pages (2 MiB), aligned to one and advised as
 /// transparent huge pages, so that its first touch costs one page fault per 2 MiB instead of
-/// one per 4 KiB: a 25 MB film written by two threads took 26–29 ms of page faults that way
-/// against 42–60 ms (docs/performance.md). Where the kernel gives
-/// no huge pages it is an ordinary mapping. A block of the same size given back earlier is
-/// taken first, its pages already in: its contents are unspecified. Throws std::bad_alloc.
+/// one per 4 KiB (a film of megabytes is written once a frame, and its page faults would cost
+/// as much as the writes). Where the kernel gives no huge pages it is an ordinary mapping. A block
+/// of the same size given back earlier is taken first, its pages already in: its contents are
+/// unspecified. Throws std::bad_alloc.
 std::byte* map_pages(size_t bytes);
 
 /// Gives back a block of map_pages(bytes). The newest 256 MiB of given-back blocks are kept for
