@@ -1,7 +1,5 @@
 // python: raylane.load_scene and Scene: render (the pixels `raylane render -o FILE.pfm` writes),
 // compare (the figures of `raylane compare`) and info (those of `raylane info`).
-#include <xmmintrin.h>
-
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -9,6 +7,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "core/float_modes.h"
 #include "core/isa.h"
 #include "python/bindings.h"
 #include "render/primary_ids.h"
@@ -28,16 +27,6 @@ struct SceneHandle {
     Camera camera;  ///< the file's camera; render and compare change scene.camera
     double load_ms = 0.0, build_ms = 0.0;
     std::mutex mutex;  ///< one render or compare at a time (they set scene.camera)
-};
-
-/// The calling thread's floating-point modes, restored when it goes (the renderers set
-/// flush-to-zero on the threads they run on, the caller's among them).
-struct KeepFloatModes {
-    unsigned saved = _mm_getcsr();
-    KeepFloatModes() = default;
-    ~KeepFloatModes() { _mm_setcsr(saved); }
-    KeepFloatModes(const KeepFloatModes&) = delete;
-    KeepFloatModes& operator=(const KeepFloatModes&) = delete;
 };
 
 std::shared_ptr<SceneHandle> load(const std::string& path) {

@@ -24,10 +24,10 @@
 #include <memory>
 #include <random>
 
+#include "core/float_modes.h"
 #include "core/offset.h"
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
-#include "render/tiles.h"
 #include "support/isa_sets.h"
 #include "support/summary.h"
 #include "traverse/intersect_contenders.h"

@@ -18,7 +18,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/isa.h"
-#include "render/tiles.h"
+#include "render/progress.h"
 #include "report/plot_svg.h"
 #include "report/report_analytic.h"
 #include "report/report_cache.h"

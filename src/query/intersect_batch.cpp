@@ -3,7 +3,6 @@
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-#include <xmmintrin.h>
 
 #include <algorithm>
 #include <bit>
@@ -11,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/float_modes.h"
 #include "core/ray_packet.h"
 #include "query/batch_rays.h"
 #include "traverse/intersect_block.h"
@@ -21,16 +21,6 @@
 
 namespace raylane::RAYLANE_ISA_NS {
 namespace {
-
-/// Flush-to-zero and denormals-are-zero (numerics.md §0.2) for a task; the thread's own modes
-/// come back afterwards (a task may run on the caller's thread).
-struct FlushToZero {
-    unsigned saved = _mm_getcsr();
-    FlushToZero() { _mm_setcsr(saved | 0x8040u); }
-    ~FlushToZero() { _mm_setcsr(saved); }
-    FlushToZero(const FlushToZero&) = delete;
-    FlushToZero& operator=(const FlushToZero&) = delete;
-};
 
 /// The geometric normal surface_at gives for ray i's hit: from the table when there is one,
 /// straight from the triangle's corners for a mesh otherwise.
@@ -80,7 +70,10 @@ void run_tasks(size_t count, int threads, Body&& body) {
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(size_t(0), tasks, [&](size_t k) {
-            FlushToZero ftz;
+            // flush-to-zero for the task; the thread's own modes come back afterwards (a task
+            // may run on the caller's thread)
+            const KeepFloatModes keep;
+            enable_flush_to_zero();
             body(k * batch_task_rays, std::min(count, (k + 1) * batch_task_rays));
         });
     });

@@ -1,4 +1,5 @@
-// render: image tiles run in parallel on oneTBB, with progress on stderr. Both renderers use it.
+// render: image tiles run in parallel on oneTBB (progress on stderr: progress.h), each thread with
+// flush-to-zero (core/float_modes.h), and cancelling a render. Both renderers use it.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -6,12 +7,12 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <stdexcept>
 #include <vector>
 
+#include "core/float_modes.h"
+#include "render/progress.h"
 #include "render/render_params.h"
 
 namespace raylane {
@@ -31,26 +32,6 @@ PixelRect tile_part(int width, int height, int tile_size, int index, int count);
 /// The region a render covers: params.region, or the whole frame when it is empty. Throws
 /// std::invalid_argument when the region is not inside the frame.
 PixelRect render_region(const RenderParams& params, int width, int height);
-
-/// Sets flush-to-zero and denormals-are-zero for the calling thread (numerics.md §0.2).
-void enable_flush_to_zero();
-
-/// True when stderr is a terminal (progress is shown only then).
-bool stderr_is_terminal();
-
-/// Prints "label: N%, T s, ~R s left" on stderr when the percentage changes (only when stderr
-/// is a terminal and `enabled`): the time since it was made and, from 2 % on, an estimate of
-/// the time left from the pace so far.
-struct Progress {
-    const char* label;
-    size_t total;
-    bool enabled;
-    std::atomic<size_t> done{0};
-    std::atomic<int> shown{-1};
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-    void step();
-    void finish();
-};
 
 /// Thrown by for_each_tile when a cancel was requested: the render is incomplete.
 struct Cancelled : std::runtime_error {

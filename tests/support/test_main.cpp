@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/float_modes.h"
 #include "core/isa.h"
-#include "render/tiles.h"
 
 int main(int argc, char** argv) {
     ::setenv("RAYLANE_MODEL_PATH", RAYLANE_SHARED_DIR "/models:" RAYLANE_SHARED_DIR "/textures", 0);
