@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "app/part.h"
-#include "app/write_output.h"
+#include "distribute/part.h"
+#include "distribute/write_output.h"
 #include "image/exr.h"
 #include "image/pfm.h"
 #include "support/cli_run.h"
