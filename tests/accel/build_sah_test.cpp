@@ -8,6 +8,7 @@
 
 #include "accel/bvh.h"
 #include "io/load_mesh.h"
+#include "support/models.h"
 #include "support/random_boxes.h"
 
 namespace raylane {
@@ -111,7 +112,7 @@ TEST(BuildSah, ExponentialCentroidsStayWithinTheTraversalStack) {
 /// budget (at most 64 bytes per triangle with the triangle data).
 TEST(BuildSah, DragonTreeIsCheaperThanTheMedianSplitInTheSameMemory) {
     const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/dragon.ply";
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+    if (!std::filesystem::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
     const Mesh mesh = load_mesh(path);
     const MeshAccel median = build_mesh_accel(mesh, BuildParams{});
     const MeshAccel sah_accel = build_mesh_accel(mesh, sah());

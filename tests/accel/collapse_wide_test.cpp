@@ -12,6 +12,7 @@
 #include "accel/bvh.h"
 #include "accel/wide_bvh.h"
 #include "io/load_mesh.h"
+#include "support/models.h"
 #include "support/random_boxes.h"
 
 namespace raylane {
@@ -217,7 +218,7 @@ TEST(CollapseWide, LeafTrianglesAreTheLeafOrderVerticesInSoa) {
 /// leaves' triangles, the primitive ids) stays within 64 bytes per triangle.
 TEST(CollapseWide, DragonWithinTheMemoryBudget) {
     const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/dragon.ply";
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+    if (!std::filesystem::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
     const Mesh mesh = load_mesh(path);
     for (BvhBuild method : {BvhBuild::median, BvhBuild::sah}) {
         const MeshAccel accel = build_mesh_accel(mesh, wide_params(method));

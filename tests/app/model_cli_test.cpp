@@ -8,6 +8,7 @@
 
 #include "image/pfm.h"
 #include "support/cli_run.h"
+#include "support/models.h"
 #include "support/temp_dir.h"
 
 namespace raylane {
@@ -23,7 +24,7 @@ using test::write_file;
 const std::string bunny = std::string(RAYLANE_SHARED_DIR) + "/models/bunny.ply";
 
 TEST(ModelCli, RenderModelShowsTheModelLit) {
-    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
+    if (!std::filesystem::exists(bunny)) RAYLANE_MODEL_MISSING() << bunny << " is not available";
     TempDir dir("raylane_model_cli_");
     const std::string pfm = (dir.path / "bunny.pfm").string();
     const CliRun r = run("render " + bunny + " --width 160 -o " + pfm);
@@ -44,7 +45,7 @@ TEST(ModelCli, RenderModelShowsTheModelLit) {
 }
 
 TEST(ModelCli, TheSceneCommandPrintsWhatRenderRenders) {
-    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
+    if (!std::filesystem::exists(bunny)) RAYLANE_MODEL_MISSING() << bunny << " is not available";
     TempDir dir("raylane_model_cli_");
     const CliRun s = run("scene " + bunny);
     ASSERT_EQ(s.code, 0) << s.err;
@@ -61,7 +62,7 @@ TEST(ModelCli, TheSceneCommandPrintsWhatRenderRenders) {
 }
 
 TEST(ModelCli, InfoAndCompareTakeAModel) {
-    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
+    if (!std::filesystem::exists(bunny)) RAYLANE_MODEL_MISSING() << bunny << " is not available";
     const CliRun info = run("info " + bunny);
     ASSERT_EQ(info.code, 0) << info.err;
     EXPECT_NE(info.out.find("wide tree"), std::string::npos) << info.out;
@@ -142,7 +143,7 @@ TEST(ModelCli, ADepthPfmIsInSceneUnitsAndItsPngNamesItsScale) {
 }
 
 TEST(ModelCli, ThePngBytesDoNotDependOnTheThreadCount) {
-    if (!std::filesystem::exists(bunny)) GTEST_SKIP() << bunny << " is not available";
+    if (!std::filesystem::exists(bunny)) RAYLANE_MODEL_MISSING() << bunny << " is not available";
     TempDir dir("raylane_model_cli_");
     std::string first;
     for (int threads : {1, 2}) {

@@ -17,6 +17,7 @@
 #include "io/load_ply.h"
 #include "support/gzip.h"
 #include "support/input_error.h"
+#include "support/models.h"
 #include "support/temp_dir.h"
 
 namespace raylane {
@@ -237,7 +238,7 @@ TEST(LoadObj, LoadsFromDiskAndNamesTheMeshAfterTheFile) {
 
 TEST(LoadObj, ReadsTheDragon) {
     const std::string path = test::models_dir + "/dragon.obj";
-    if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
+    if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
     Mesh m = load_obj(path);
     EXPECT_EQ(m.name, "dragon.obj");
     EXPECT_EQ(m.positions.size(), 50000u);
@@ -270,7 +271,8 @@ double surface_area(const Mesh& m) {
 TEST(LoadObj, DragonObjMatchesDragonPlyUnderTheDocumentedTransform) {
     const std::string obj_path = test::models_dir + "/dragon.obj";
     const std::string ply_path = test::models_dir + "/dragon.ply";
-    if (!fs::exists(obj_path) || !fs::exists(ply_path)) GTEST_SKIP() << "dragon files not present";
+    if (!fs::exists(obj_path) || !fs::exists(ply_path))
+        RAYLANE_MODEL_MISSING() << "dragon files not present";
     Mesh from_obj = load_obj(obj_path);
     Mesh from_ply = load_ply(ply_path);
     ASSERT_EQ(from_obj.tris.size(), from_ply.tris.size());
@@ -291,7 +293,7 @@ TEST(LoadObj, DragonObjMatchesDragonPlyUnderTheDocumentedTransform) {
 
 TEST(LoadObj, ReadsTheAppleWithUvsAndNormals) {
     const std::string path = test::models_dir + "/apple/food_apple_01_4k.obj";
-    if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
+    if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
     Mesh m = load_obj(path);
     EXPECT_EQ(m.positions.size(), 3504u);
     EXPECT_EQ(m.uvs.size(), 4019u);
@@ -306,7 +308,7 @@ TEST(LoadObj, ReadsTheAppleWithUvsAndNormals) {
 
 TEST(LoadObj, ReadsTheCornellBoxQuadsWithNegativeIndices) {
     const std::string path = test::models_dir + "/cornell_box/CornellBox-Original.obj";
-    if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
+    if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
     Mesh m = load_obj(path);
     EXPECT_EQ(m.positions.size(), 72u);
     EXPECT_EQ(m.tris.size(), 36u);

@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "support/gzip.h"
 #include "support/input_error.h"
+#include "support/models.h"
 
 namespace raylane {
 namespace {
@@ -318,7 +319,7 @@ TEST(LoadPly, StartsABinaryBodyAfterTheHeadersOwnLineEnd) {
 
 TEST(LoadPly, ReadsTheBinaryDragon) {
     const std::string path = test::models_dir + "/dragon.ply";
-    if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
+    if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
     Mesh m = load_ply(path);
     EXPECT_EQ(m.name, "dragon.ply");
     EXPECT_EQ(m.positions.size(), 50000u);
@@ -341,7 +342,7 @@ TEST(LoadPly, ReadsTheBinaryDragon) {
 
 TEST(LoadPly, ReadsTheAsciiBunny) {
     const std::string path = test::models_dir + "/bunny.ply";
-    if (!fs::exists(path)) GTEST_SKIP() << path << " not present";
+    if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
     Mesh m = load_ply(path);
     EXPECT_EQ(m.positions.size(), 35947u);
     EXPECT_EQ(m.tris.size(), 69451u);

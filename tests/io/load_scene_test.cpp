@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "io/model_path.h"
 #include "scene/transform.h"
+#include "support/models.h"
 #include "support/temp_dir.h"
 
 namespace raylane {
@@ -637,7 +638,8 @@ TEST(SceneFiles, TheExampleOfTheFormatDocumentLoads) {
     begin += 8;
     size_t end = text.find("```", begin);
     ASSERT_NE(end, std::string::npos);
-    if (!model_available("dragon.ply", scenes_dir)) GTEST_SKIP() << "dragon.ply not found";
+    if (!model_available("dragon.ply", scenes_dir))
+        RAYLANE_MODEL_MISSING() << "dragon.ply not found";
     Scene s = load_scene_from_string(text.substr(begin, end - begin), scenes_dir + "/doc.json");
     EXPECT_EQ(s.objects.size(), 6u);
     EXPECT_EQ(s.lights.size(), 2u);
@@ -651,7 +653,8 @@ vec3 undo_ty(vec3 p, vec3 translate, double deg) {
 }
 
 TEST(SceneFiles, DragonIsNormalisedAsInTheReport) {
-    if (!model_available("dragon.ply", scenes_dir)) GTEST_SKIP() << "dragon.ply not found";
+    if (!model_available("dragon.ply", scenes_dir))
+        RAYLANE_MODEL_MISSING() << "dragon.ply not found";
     Scene s = load_scene(scenes_dir + "/dragon.json");
     ASSERT_EQ(s.meshes.size(), 1u);
     EXPECT_EQ(count_triangles(s), 100000u);
@@ -673,7 +676,7 @@ TEST(SceneFiles, DragonIsNormalisedAsInTheReport) {
 }
 
 TEST(SceneFiles, BunnySitsOnTheFloorAsInTheReport) {
-    if (!model_available("bunny.ply", scenes_dir)) GTEST_SKIP() << "bunny.ply not found";
+    if (!model_available("bunny.ply", scenes_dir)) RAYLANE_MODEL_MISSING() << "bunny.ply not found";
     Scene s = load_scene(scenes_dir + "/bunny.json");
     ASSERT_EQ(s.meshes.size(), 1u);
     EXPECT_EQ(count_triangles(s), 69451u);

@@ -1,4 +1,4 @@
-// Numerical stability suite, shading (numerics.md §10, checklist row 10): Beer's law of
+// Numerical stability suite, shading (numerics.md §10): Beer's law of
 // shade/optics_scalar.h (beer_transmittance) and its packet twin in optics_packet.h on a grid of
 // absorbances and distances from 0 through tiny and huge to infinity, against pow in double;
 // then a rendered index-matched absorbing sphere, whose every pixel is L filter^chord.

@@ -1,4 +1,4 @@
-// numerics.md §16 (checklist row 16): extreme fields of view and lens radii for the camera
+// numerics.md §16 : extreme fields of view and lens radii for the camera
 // (render/camera_rays.h, camera_rays_packet.h) and the scene loader's validation of them
 // (io/load_scene.cpp): distinct rays at 1e-3 degrees, forward rays up to the widest accepted
 // fov, invalid values rejected, lens radius 0 bitwise the pinhole.

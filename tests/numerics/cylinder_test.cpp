@@ -1,4 +1,4 @@
-// numerics.md §5 (checklist row 5): rays along the axis of a capped cylinder, at its rims and
+// numerics.md §5 : rays along the axis of a capped cylinder, at its rims and
 // grazing its side (traverse/cylinder_scalar.h, cylinder_packet.h): exact cap hits, no NaN, no
 // leak at the rims, and t against the double instantiation as the oracle.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// numerics.md §8 (checklist row 8): degenerate triangles (three identical vertices, collinear
+// numerics.md §8 : degenerate triangles (three identical vertices, collinear
 // vertices, a sliver of area 1e-20 edge^2) and NaN vertices: the loaders (io/load_obj.h,
 // io/load_ply.h) reject NaN and drop zero-area triangles, the watertight test
 // (traverse/triangle_scalar.h, triangle_packet.h) never reports a degenerate triangle as hit, the

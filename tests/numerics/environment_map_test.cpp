@@ -1,4 +1,4 @@
-// Numerical stability suite, shading (numerics.md §15, checklist row 15): the latitude-longitude
+// Numerical stability suite, shading (numerics.md §15): the latitude-longitude
 // environment map of shade/texture_scalar.h and texture_packet.h at the poles, on the seam at
 // -x, where u is exactly 1, for tiny, huge, denormal and invalid directions, with garbage in
 // inactive packet lanes; and the Whitted forms of the furnace test (error-vs-time.md, "Analytic

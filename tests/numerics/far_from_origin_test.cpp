@@ -1,4 +1,4 @@
-// numerics.md §17 and §20 (checklist row 17): models far from the origin (io/load_scene.cpp,
+// numerics.md §17 and §20: models far from the origin (io/load_scene.cpp,
 // traverse/), barycentric hit points of far triangles, and a median-split BVH over
 // exponentially spaced centroids (accel/build_median.cpp) traversed without overflowing the
 // fixed traversal stacks of intersect_scalar.cpp / intersect_packet.cpp.
@@ -16,6 +16,7 @@
 #include "io/load_scene.h"
 #include "render/camera_rays.h"
 #include "support/geometry_support.h"
+#include "support/models.h"
 #include "traverse/surface_packet.h"
 #include "traverse/surface_scalar.h"
 
@@ -76,7 +77,7 @@ TEST(FarFromOrigin, TranslatedBunnyRendersLikeTheBunnyAtHome) {
         home = load_scene_from_string(bunny_json(0.0), where);
         far = load_scene_from_string(bunny_json(1e5), where);
     } catch (const std::exception& e) {
-        GTEST_SKIP() << "bunny.ply is not available: " << e.what();
+        RAYLANE_MODEL_MISSING() << "bunny.ply is not available: " << e.what();
     }
     if (sanitized) {
         home.camera.width = far.camera.width = 80;

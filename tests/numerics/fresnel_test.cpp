@@ -1,4 +1,4 @@
-// Numerical stability suite, shading (numerics.md §9, checklist row 9): the exact dielectric
+// Numerical stability suite, shading (numerics.md §9): the exact dielectric
 // Fresnel term and refraction of shade/optics_scalar.h and their packet twins in optics_packet.h,
 // on a grid of indices (1, 1.0001, 1.5, 4 and their inverses) and cosines (0, tiny, near the
 // critical angle, 1, 1 + 1 ulp, garbage), against a double oracle. The eta = 1 sphere is rendered

@@ -1,4 +1,4 @@
-// Numerical stability suite, shading (numerics.md §14, checklist row 14): light samples of
+// Numerical stability suite, shading (numerics.md §14): light samples of
 // shade/lights_scalar.h and lights_packet.h from shading points on a point light, at tiny
 // distances from it, on the plane of area lights, exactly on area-light samples and behind the
 // lights; rendered scenes with lights lying on and inside surfaces; and the point light over a

@@ -1,4 +1,4 @@
-// Numerical stability suite, shading (numerics.md §13, checklist row 13): shading frames. The
+// Numerical stability suite, shading (numerics.md §13): shading frames. The
 // orthonormal bases of shade/brdf_scalar.h (orthonormal_basis) and of the normal maps
 // (texture_scalar.h, normal_from_map's fallback frame) for normals at and near -z; normal-map
 // texels tilted 89 degrees, bent by keep_above; and rendered normal-mapped floors seen at grazing

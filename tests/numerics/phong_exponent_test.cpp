@@ -1,4 +1,4 @@
-// Numerical stability suite, shading (numerics.md §11, checklist row 11): the Phong lobe around
+// Numerical stability suite, shading (numerics.md §11): the Phong lobe around
 // the mirror direction and the Blinn-Phong half-vector lobe of shade/brdf_scalar.h and
 // brdf_packet.h at exponents 1e3 .. 1e6, the cases tests/shade/brdf_*_test.cpp leave out:
 // chi-square in lobe coordinates scaled by sqrt(e), the pdf's integral, finite weights at

@@ -1,4 +1,4 @@
-// numerics.md §6 and §20 (checklist row 6): rays parallel to a plane, lying in it, and with
+// numerics.md §6 and §20 : rays parallel to a plane, lying in it, and with
 // tiny and denormal slopes (traverse/plane_scalar.h, plane_packet.h): a miss or a finite t,
 // never NaN; shadow rays leaving a plane do not hit it; planes stay out of the BVH.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// numerics.md §3 (checklist row 3): the acne / leak sweep. One scene (a sphere resting on a
+// numerics.md §3 : the acne / leak sweep. One scene (a sphere resting on a
 // box, a glass sphere beside it, a point light) at scales 1e-4, 1 and 1e5, and at scale 1
 // translated by (1e5, 1e5, 1e5), camera moved along. Secondary rays start at
 // offset_ray_origin (core/offset.h, offset_packet.h) as shading spawns them, with no tmin.

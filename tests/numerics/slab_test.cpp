@@ -1,4 +1,4 @@
-// numerics.md §2 (checklist row 2): the BVH slab test (traverse/slab_scalar.h, slab_packet.h)
+// numerics.md §2 : the BVH slab test (traverse/slab_scalar.h, slab_packet.h)
 // with axis-parallel rays, +-0 and denormal direction components, origins on face planes, and
 // rays that graze boxes: conservative, never NaN, and the BVH answers as brute force does.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// numerics.md §4 (checklist row 4): far, tiny and huge spheres (traverse/sphere_scalar.h,
+// numerics.md §4 : far, tiny and huge spheres (traverse/sphere_scalar.h,
 // sphere_packet.h): rays at the disc hit, rays at the annulus miss, hit points lie on the
 // surface within a few ulps, against the double instantiation as the oracle.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// numerics.md §1 (checklist row 1): rays through the shared edges and vertices of closed meshes
+// numerics.md §1 : rays through the shared edges and vertices of closed meshes
 // never slip through (traverse/triangle_scalar.h, triangle_packet.h), from inside and outside,
 // near and far from the origin; the same decisions through the BVH and the packet path.
 #include <gtest/gtest.h>

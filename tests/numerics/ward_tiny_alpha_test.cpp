@@ -1,4 +1,4 @@
-// Numerical stability suite, shading (numerics.md §12, checklist row 12): the Ward and
+// Numerical stability suite, shading (numerics.md §12): the Ward and
 // Ward-Duer lobes, pdf and samplers of shade/brdf_scalar.h and brdf_packet.h for roughness alpha
 // from 1 down to 0 (and garbage below), at exact mirror pairs, grazing cosines down to 1e-12
 // and extreme random numbers: no NaN or infinity, every alpha below brdf_alpha_min behaves as

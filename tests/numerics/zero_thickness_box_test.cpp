@@ -1,4 +1,4 @@
-// numerics.md §7 (checklist row 7): a box primitive of zero thickness (traverse/box_scalar.h,
+// numerics.md §7 : a box primitive of zero thickness (traverse/box_scalar.h,
 // box_packet.h) and flat BVH nodes around a planar mesh, crossed head-on, at 45 degrees and at
 // 89.9 degrees: every ray over the footprint hits, and the BVH answers as brute force does.
 #include <gtest/gtest.h>

@@ -21,11 +21,16 @@ def scene_path(name):
 
 
 def model_or_skip(name):
-    """The path of a model on RAYLANE_MODEL_PATH; the test is skipped when it is not there."""
+    """The path of a model on RAYLANE_MODEL_PATH; the test is skipped when it is not there, or
+    fails when RAYLANE_REQUIRE_MODELS=1 (CI sets it: there a missing model is a fault)."""
     for folder in os.environ.get("RAYLANE_MODEL_PATH", "").split(":"):
         if folder and os.path.isfile(os.path.join(folder, name)):
             return os.path.join(folder, name)
-    pytest.skip(name + " is not on RAYLANE_MODEL_PATH")
+    why = (name + " is not on RAYLANE_MODEL_PATH (put ../shared/models beside the checkout or its "
+           "folder in RAYLANE_MODEL_PATH)")
+    if os.environ.get("RAYLANE_REQUIRE_MODELS") == "1":
+        pytest.fail(why + " and RAYLANE_REQUIRE_MODELS=1")
+    pytest.skip(why)
 
 
 def run_cli(*args):

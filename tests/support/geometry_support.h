@@ -1,6 +1,6 @@
 // Test support for the geometry half of the numerical stability suite (numerics.md §1-8, 16,
 // 17): synthetic closed meshes, brute-force oracles, ulp distances, and running ray sets
-// through the packet path at every width this machine runs (checklist row P).
+// through the packet path at every width this machine runs.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "io/load_scene.h"
+#include "support/models.h"
 #include "support/widths.h"
 #include "traverse/intersect_packet.h"
 #include "traverse/intersect_scalar.h"
@@ -108,7 +109,7 @@ TYPED_TEST_SUITE(IntersectPacketIncoherent, Widths, WidthName);
 template <int W>
 void check(const std::string& name) {
     const std::shared_ptr<Case> c = make_case(name);
-    if (!c) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
+    if (!c) RAYLANE_MODEL_MISSING() << "scenes/" << name << ".json or its model is not available";
     size_t hits = 0;
     for (const Hit& h : c->closest) hits += h.hit();
     EXPECT_GT(hits, c->rays.size() / 4) << "the rays must hit something";

@@ -20,6 +20,7 @@
 #include "scene/transform.h"
 #include "support/adversarial_rays.h"
 #include "support/geometry_support.h"
+#include "support/models.h"
 #include "support/ray_packets.h"
 #include "support/widths.h"
 #include "traverse/intersect_block.h"
@@ -297,7 +298,7 @@ void check_scene(const std::string& name,
                                    const std::vector<uint8_t>&),
                  BvhBuild method = BvhBuild::median) {
     const std::shared_ptr<Loaded> l = load(name, method);
-    if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
+    if (!l) RAYLANE_MODEL_MISSING() << "scenes/" << name << ".json or its model is not available";
     const RaySets& s = ray_sets(name, method);
     size_t hits = 0;
     for (const Hit& h : s.camera_hits) hits += h.hit();
@@ -344,7 +345,7 @@ TYPED_TEST(IntersectPacket, BlocksMatchScalarOnEveryAnalyticShape) {
 template <int W>
 void check_scene_streams(const std::string& name, BvhBuild method = BvhBuild::median) {
     const std::shared_ptr<Loaded> l = load(name, method);
-    if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
+    if (!l) RAYLANE_MODEL_MISSING() << "scenes/" << name << ".json or its model is not available";
     const RaySets& s = ray_sets(name, method);
     std::vector<uint8_t> bounce_blocked(s.bounce.size());
     tbb::parallel_for(size_t(0), s.bounce.size(), [&](size_t i) {
@@ -622,7 +623,8 @@ TYPED_TEST(IntersectPacket, LoneLanesMatchScalar) {
     constexpr int per_block = max_block_rays / W;
     for (const char* name : {"dragon", "bunny"}) {
         const std::shared_ptr<Loaded> l = load(name);
-        if (!l) GTEST_SKIP() << "scenes/" << name << ".json or its model is not available";
+        if (!l)
+            RAYLANE_MODEL_MISSING() << "scenes/" << name << ".json or its model is not available";
         const RaySets& s = ray_sets(name, BvhBuild::median);
         // blocks of packets with ray k alone in lane k % W, the other lanes inactive (benign:
         // t_max < t_min), for the first 200k rays; check(p, active, count, first ray) counts

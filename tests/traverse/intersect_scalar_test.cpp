@@ -9,6 +9,7 @@
 #include <random>
 
 #include "io/load_mesh.h"
+#include "support/models.h"
 #include "traverse/surface_scalar.h"
 #include "traverse/triangle_scalar.h"
 
@@ -111,7 +112,7 @@ std::vector<Ray> random_rays(const Aabb& box, int n, uint32_t seed) {
 TEST(IntersectScalar, ClosestHitEqualsBruteForceOnTheBunny) {
     const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/bunny.ply";
     if (!std::filesystem::exists(path)) {
-        GTEST_SKIP() << path << " not found";
+        RAYLANE_MODEL_MISSING() << path << " not found";
     }
     Scene scene;
     scene.meshes.push_back(load_mesh(path));
