@@ -207,14 +207,13 @@ std::vector<RankPlace> gather_places(int rank, int ranks) {
     return all;
 }
 
-/// Rank 0's record of the job: who holds each unit, and the frames written. What it says when
-/// the job is stopped.
+/// Rank 0's record of the job: who holds each unit, and how many frames are written. What it says
+/// when the job is stopped.
 struct JobRecord {
     static constexpr int waiting = -1;   ///< not handed out yet
     static constexpr int gathered = -2;  ///< its pixels are in their frame
     std::vector<int> holder;             ///< per unit: the rank rendering it, or the above
-    std::vector<int> written;            ///< the frames written
-    std::atomic<int> frames_written{0};  ///< written.size(), for the stop handler
+    std::atomic<int> frames_written{0};  ///< frames written (read by the stop handler)
 };
 
 /// A line of text built without allocating: the stop handler's (async-signal-safe).
@@ -415,10 +414,8 @@ double serve_workers(const RenderJob& job, const std::vector<Unit>& units, int r
         ++gathered;
         if (failure) return;
         try {
-            if (gather.add(units[unit].frame, units[unit].rect, data, stats)) {
-                record.written.push_back(units[unit].frame);
+            if (gather.add(units[unit].frame, units[unit].rect, data, stats))
                 ++record.frames_written;
-            }
             progress.step();
         } catch (const std::exception&) {
             failure = std::current_exception();
