@@ -131,7 +131,6 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
             << bench::figure_text(b, "%.1f ms") << " | " << bench::ratio_text(a, b) << " | "
             << bench::figure_text(m.median_counter(two, "serving_pct"), "%.2f %%") << " |\n";
     }
-    out << "\ntargets: ranks / process >= 0.9x; hand-out and gathering <= 5 %\n";
 }
 
 }  // namespace

@@ -80,8 +80,8 @@ void register_all() {
     }
 }
 
-/// `--summary`: the frame's medians per set, the packet path's speed-up over the scalar path
-/// (scalar time / packet time), and the frame's target (< 30 ms on 2 threads) on the set in use.
+/// `--summary`: the frame's medians per set, and the packet path's speed-up over the scalar path
+/// (scalar time / packet time).
 void print_summary(const bench::Measured& m, std::ostream& out) {
     auto ms = [&](const std::string& path, int threads) {
         return m.median_ms("BM_Frame_" + path + "/threads:" + std::to_string(threads) +
@@ -103,11 +103,6 @@ void print_summary(const bench::Measured& m, std::ostream& out) {
                 << " | " << bench::ratio_text(ms("Scalar", threads), packet(isa, threads))
                 << " |\n";
     bench::print_isas_not_raced(out);
-    const Isa in_use = bench::isa_in_use();
-    const std::optional<double> frame = packet(in_use, 2);
-    out << "\nTarget, on the set `raylane` uses here, " << bench::isa_label(in_use) << ":\n"
-        << "- dragon frame, packet path, 2 threads < 30 ms: " << bench::verdict_below(frame, 30.0)
-        << " (" << bench::figure_text(frame, "%.1f ms") << ")\n";
 }
 
 }  // namespace

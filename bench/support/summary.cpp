@@ -37,7 +37,7 @@ void print_summary_usage(const char* program) {
     std::printf(
         "%s: a Google Benchmark program of Raylane (docs/performance.md).\n"
         "  --summary   after the runs, print a Markdown table of the medians of the repetitions,\n"
-        "              the ratios (to the scalar path, to Embree) and whether each target is met\n"
+        "              and the ratios (to the scalar path, to Embree)\n"
         "              (use --benchmark_repetitions=3 or more); console output only\n"
         "Google Benchmark's own options:\n",
         program);
@@ -188,16 +188,6 @@ std::string figure_text(std::optional<double> value, const char* format) {
 
 std::string ratio_text(std::optional<double> num, std::optional<double> den) {
     return figure_text(divide(num, den), "%.2fx");
-}
-
-std::string verdict(std::optional<double> value, double target) {
-    if (!value) return "—";
-    return *value >= target ? "met" : "not met";
-}
-
-std::string verdict_below(std::optional<double> value, double limit) {
-    if (!value) return "—";
-    return *value < limit ? "met" : "not met";
 }
 
 }  // namespace raylane::bench

@@ -1,6 +1,6 @@
 // bench: a summary table printed after a benchmark program's runs (`--summary`): the medians of
-// the repetitions and the ratios that docs/performance.md reports, so that one command gives the
-// figures and the targets they are held to.
+// the repetitions and the ratios that docs/performance.md reports, so that one command gives its
+// figures.
 #pragma once
 
 #include <map>
@@ -56,11 +56,5 @@ std::string figure_text(std::optional<double> value, const char* format);
 
 /// "1.23x", or "—" when either figure is missing.
 std::string ratio_text(std::optional<double> num, std::optional<double> den);
-
-/// "met" when value >= target, "not met" when below, "—" when the value is missing.
-std::string verdict(std::optional<double> value, double target);
-
-/// "met" when value < limit (a time under its target), "not met" when not, "—" when missing.
-std::string verdict_below(std::optional<double> value, double limit);
 
 }  // namespace raylane::bench

@@ -371,15 +371,11 @@ void register_all() {
 }
 
 /// `--summary`: Mrays/s (median of the repetitions) of every contender, one table per model and
-/// instruction set, by ray kind and thread count, and the ratios the targets are set on: the
-/// best of the set's packet contenders (Packet<W>, Block<W>, Stream<W>: the median-split tree)
-/// over the scalar path and over Embree's best API on the same set; the SAH contenders over
-/// Embree's best. The target against Embree is judged only when every Embree API of that ray
-/// kind was run.
+/// instruction set, by ray kind and thread count, and the ratios: the best of the set's packet
+/// contenders (Packet<W>, Block<W>, Stream<W>: the median-split tree) over the scalar path and
+/// over Embree's best API on the same set; the SAH contenders over Embree's best.
 void print_summary(const Measured& m, std::ostream& out) {
     const char* kinds[3] = {"primary", "shadow", "bounce"};
-    const double over_embree[3] = {1.6, 1.2, 1.3};  // targets, by kind
-    const double over_scalar[3] = {4.0, 0.0, 1.0};  // (none for shadow rays)
     auto rate = [&](const std::string& c, const char* model, const char* kind, int threads) {
         const std::optional<double> r =
             m.median_counter("BM_Intersect_" + c + "/" + model + "/" + kind +
@@ -415,9 +411,8 @@ void print_summary(const Measured& m, std::ostream& out) {
             if (ran("Scalar")) shown.insert(shown.begin(), "Scalar");
             out << "\n| " << model << ", " << isa_label(isa) << " |";
             for (const std::string& c : shown) out << " " << c.substr(0, c.find('_')) << " |";
-            out << " packet / scalar | packet / Embree's best | SAH / Embree's best | targets "
-                   "|\n|---|";
-            for (size_t i = 0; i < shown.size() + 4; ++i) out << "---:|";
+            out << " packet / scalar | packet / Embree's best | SAH / Embree's best |\n|---|";
+            for (size_t i = 0; i < shown.size() + 3; ++i) out << "---:|";
             out << "\n";
             for (int k = 0; k < 3; ++k) {
                 for (int threads : {1, 2}) {
@@ -439,31 +434,14 @@ void print_summary(const Measured& m, std::ostream& out) {
                         out << " " << figure_text(v, v && *v >= 100.0 ? "%.0f" : "%.3g") << " |";
                     }
                     const auto packet = best(packet_names), sah = best(sah_names);
-                    const bool every_embree =
-                        r(embree1) && r(embree16) && (k == 1 || r(embree1m));  // no 1M shadow
                     const auto embree = best({embree1, embree16, embree1m});
                     out << " " << ratio_text(packet, r("Scalar")) << " | "
-                        << ratio_text(packet, embree) << " | " << ratio_text(sah, embree) << " | "
-                        << figure_text(over_embree[k], "%.1fx") << " Embree's best: "
-                        << verdict(every_embree ? divide(packet, embree) : std::nullopt,
-                                   over_embree[k]);
-                    if (over_scalar[k] > 0.0)
-                        out << "; " << figure_text(over_scalar[k], "%.0fx")
-                            << " scalar: " << verdict(divide(packet, r("Scalar")), over_scalar[k]);
-                    out << " |\n";
+                        << ratio_text(packet, embree) << " | " << ratio_text(sah, embree) << " |\n";
                 }
             }
         }
     }
     print_isas_not_raced(out);
-    out << "\nTargets, at every set (each row's last column says whether the row meets them):\n";
-    for (int k = 0; k < 3; ++k) {
-        out << "- " << kinds[k]
-            << " rays: packet / Embree's best >= " << figure_text(over_embree[k], "%.1fx") << "\n";
-        if (over_scalar[k] > 0.0)
-            out << "- " << kinds[k]
-                << " rays: packet / scalar >= " << figure_text(over_scalar[k], "%.0fx") << "\n";
-    }
     out << "\nThe packet figure is the best of the set's packet contenders that ran.\n";
 }
 
