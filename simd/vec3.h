@@ -23,6 +23,12 @@ inline Vec3<W> make_vec3(float x, float y, float z) {
     return {vfloat<W>(x), vfloat<W>(y), vfloat<W>(z)};
 }
 
+/// A scalar vector (anything with x, y and z, such as GLM's vec3) in every lane.
+template <int W, class V>
+inline Vec3<W> broadcast_vec3(const V& v) {
+    return make_vec3<W>(v.x, v.y, v.z);
+}
+
 /// W consecutive vectors from three SoA arrays; xs, ys, zs point at the first (any alignment).
 template <int W>
 inline Vec3<W> load_vec3(const float* xs, const float* ys, const float* zs) {

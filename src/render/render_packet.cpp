@@ -283,13 +283,14 @@ RenderResult render_packet_features(const Scene& scene, const Accel& accel,
     return result;
 }
 
-/// The kernel feature set for a scene: groups of features, so 16 kernels cover every scene.
-uint32_t kernel_features(uint32_t scene) {
+/// The kernel feature set for a scene's feature mask (scene_features): groups of features, so 16
+/// kernels cover every scene.
+uint32_t kernel_features(uint32_t scene_mask) {
     uint32_t f = 0;
-    if (scene & feature_textures) f |= feature_textures;
-    if (scene & feature_area_lights) f |= feature_area_lights;
-    if (scene & group_secondary) f |= group_secondary;
-    if (scene & (feature_environment | feature_lens)) f |= feature_environment | feature_lens;
+    if (scene_mask & feature_textures) f |= feature_textures;
+    if (scene_mask & feature_area_lights) f |= feature_area_lights;
+    if (scene_mask & group_secondary) f |= group_secondary;
+    if (scene_mask & (feature_environment | feature_lens)) f |= feature_environment | feature_lens;
     return f;
 }
 

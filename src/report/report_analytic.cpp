@@ -16,7 +16,7 @@ namespace {
 using dvec3 = glm::dvec3;
 
 /// The lit-sphere case: nullopt when the scene is not one.
-std::optional<AnalyticReference> lit_sphere(const Scene& scene, int ss) {
+std::optional<AnalyticReference> lit_sphere(const Scene& scene, int supersampling) {
     if (scene.objects.size() != 1 || scene.environment >= 0) return std::nullopt;
     const Object& obj = scene.objects[0];
     if (obj.kind != ShapeKind::sphere || obj.has_transform ||
@@ -75,8 +75,8 @@ std::optional<AnalyticReference> lit_sphere(const Scene& scene, int ss) {
     };
 
     AnalyticReference out;
-    out.name = "lit sphere, " + std::to_string(ss) + "x" + std::to_string(ss) +
-               " supersampled per pixel in double";
+    out.name = "lit sphere, " + std::to_string(supersampling) + "x" +
+               std::to_string(supersampling) + " supersampled per pixel in double";
     out.film = make_film(cam.width, cam.height);
     const double half_w = f.half_width, half_h = f.half_height;
     const dvec3 u(f.u), v(f.v), w(f.w);
@@ -85,17 +85,18 @@ std::optional<AnalyticReference> lit_sphere(const Scene& scene, int ss) {
             for (int y = rows.begin(); y != rows.end(); ++y) {
                 for (int x = 0; x < cam.width; ++x) {
                     dvec3 sum(0.0);
-                    for (int j = 0; j < ss; ++j) {
-                        for (int i = 0; i < ss; ++i) {
+                    for (int j = 0; j < supersampling; ++j) {
+                        for (int i = 0; i < supersampling; ++i) {
                             // camera_ray of render/camera_rays.h, in double
-                            const double px = x + (i + 0.5) / ss, py = y + (j + 0.5) / ss;
+                            const double px = x + (i + 0.5) / supersampling,
+                                         py = y + (j + 0.5) / supersampling;
                             const double sx = (2.0 * px / cam.width - 1.0) * half_w;
                             const double sy = (1.0 - 2.0 * py / cam.height) * half_h;
                             const dvec3 d = glm::normalize(w + sx * u + sy * v);
                             sum += radiance(d);
                         }
                     }
-                    out.film.at(x, y) = vec3(sum / double(ss * ss));
+                    out.film.at(x, y) = vec3(sum / double(supersampling * supersampling));
                 }
             }
         });

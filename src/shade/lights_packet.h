@@ -52,10 +52,10 @@ inline void concentric_disk(const vfloat<W>& sx, const vfloat<W>& sy, vfloat<W>&
 template <int W>
 inline Vec3<W> area_light_point(const Light& light, const vfloat<W>& sx, const vfloat<W>& sy,
                                 const vfloat<W>& u3) {
-    auto bc = [](vec3 v) { return make_vec3<W>(v.x, v.y, v.z); };
     switch (light.kind) {
         case LightKind::rect:
-            return (bc(light.position) + sx * bc(light.edge_u)) + sy * bc(light.edge_v);
+            return (broadcast_vec3<W>(light.position) + sx * broadcast_vec3<W>(light.edge_u)) +
+                   sy * broadcast_vec3<W>(light.edge_v);
         case LightKind::disk: {
             const vec3 n = light.direction;
             const vec3 a = std::fabs(n.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 0.0f, 1.0f);
@@ -64,12 +64,14 @@ inline Vec3<W> area_light_point(const Light& light, const vfloat<W>& sx, const v
             vfloat<W> dx, dy;
             concentric_disk<W>(sx, sy, dx, dy);
             const vfloat<W> r(light.radius);
-            return bc(light.position) + r * (dx * bc(t) + dy * bc(b));
+            return broadcast_vec3<W>(light.position) +
+                   r * (dx * broadcast_vec3<W>(t) + dy * broadcast_vec3<W>(b));
         }
         case LightKind::box:
-            return bc(light.position) + Vec3<W>{sx, sy, u3} * bc(light.edge_u);
+            return broadcast_vec3<W>(light.position) +
+                   Vec3<W>{sx, sy, u3} * broadcast_vec3<W>(light.edge_u);
         default:
-            return bc(light.position);
+            return broadcast_vec3<W>(light.position);
     }
 }
 

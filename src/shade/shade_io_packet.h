@@ -80,11 +80,6 @@ inline vint<W> gather_lanes(const std::vector<int32_t>& v, const vint<W>& idx, v
     return select(m, float_as_int(bits), vint<W>(fill));
 }
 
-template <int W>
-inline Vec3<W> bc(vec3 v) {
-    return make_vec3<W>(v.x, v.y, v.z);
-}
-
 /// Adds value to the lanes' paths (each lane is a path of its own).
 template <int W>
 inline void accumulate(const ShadeTarget& out, const vint<W>& path, const Vec3<W>& value,

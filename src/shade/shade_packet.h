@@ -89,8 +89,8 @@ template <int W, uint32_t F>
     p.ng = select(p.entering, sp.geometric_normal, -sp.geometric_normal);
     ns = select(dot(ns, p.ng) < zero, -ns, ns);
     p.ns = face_viewer<W>(keep_above<W>(ns, p.ng), p.ng, -p.view);
-    p.c_d = bc<W>(m.c_d);
-    p.c_s = bc<W>(m.c_s);
+    p.c_d = broadcast_vec3<W>(m.c_d);
+    p.c_s = broadcast_vec3<W>(m.c_s);
     if constexpr ((F & feature_textures) != 0) {
         if (m.texture >= 0) {
             p.c_d = texture_lookup<W>(scene.textures[size_t(m.texture)], sp.u, sp.v, active);
@@ -130,7 +130,7 @@ template <int W, uint32_t F, class Target>
         const Light& light = scene.lights[j];
         const int n = light_sample_count(light, params);
         const float sample_weight = 1.0f / static_cast<float>(n);
-        const Vec3<W> light_color = bc<W>(light.color);
+        const Vec3<W> light_color = broadcast_vec3<W>(light.color);
         for (int i = 0; i < n; ++i) {
             vfloat<W> u1 = zero, u2 = zero, u3 = zero;
             if constexpr ((F & feature_area_lights) != 0) {
@@ -181,9 +181,9 @@ template <int W, uint32_t F, class Target>
                              mask_or(mask_or(ne(w.x, zero), ne(w.y, zero)), ne(w.z, zero)));
                 const Vec3<W> ray_weight = local_weight * (w * inv_n);
                 out.counts->glossy_rays += uint64_t(count(ok));
-                push_packet<W>(*out.next, origin, wi, ray_weight, bc<W>(vec3(1.0f)), in.slot,
-                               in.path, child_keys<W>(in.key, purpose_glossy, id), in.refl_depth,
-                               in.refr_depth, child_env, vint<W>(1), ok);
+                push_packet<W>(*out.next, origin, wi, ray_weight, broadcast_vec3<W>(vec3(1.0f)),
+                               in.slot, in.path, child_keys<W>(in.key, purpose_glossy, id),
+                               in.refl_depth, in.refr_depth, child_env, vint<W>(1), ok);
             }
         }
     }
@@ -207,7 +207,7 @@ template <int W, class Target>
         select(mirror, o.local ? weight * (one - r) : weight * zero, weight);
     const Vec3<W> mirror_weight = (weight * r) * p.c_s;
     if (o.override_reflected) {
-        accumulate<W>(out, in.path, mirror_weight * bc<W>(o.reflected_color), mirror);
+        accumulate<W>(out, in.path, mirror_weight * broadcast_vec3<W>(o.reflected_color), mirror);
     } else if (o.reflection) {
         const Vec3<W> dir = reflect_direction<W>(p.view, p.ns);
         // a reflection about a mapped n_s below the geometric surface is discarded
@@ -215,7 +215,7 @@ template <int W, class Target>
         out.counts->reflection_rays += uint64_t(count(traced));
         const vint<W> child_env = m.env_map >= 0 ? vint<W>(m.env_map) : in.env;
         push_packet<W>(*out.next, offset_ray_origin(p.position, p.ng, p.reach), dir, mirror_weight,
-                       bc<W>(vec3(1.0f)), in.slot, in.path,
+                       broadcast_vec3<W>(vec3(1.0f)), in.slot, in.path,
                        child_keys<W>(in.key, purpose_mirror, 0), in.refl_depth + vint<W>(1),
                        in.refr_depth, child_env, vint<W>(0), traced);
     }
@@ -262,10 +262,11 @@ template <int W, class Target>
     traced = mask_andnot(traced, mask_andnot(no_fork, reflection_larger));
     transmits = mask_andnot(transmits, mask_and(no_fork, reflection_larger));
     if (o.override_reflected)
-        accumulate<W>(out, in.path, (weight * r) * bc<W>(o.reflected_color), reflects);
+        accumulate<W>(out, in.path, (weight * r) * broadcast_vec3<W>(o.reflected_color), reflects);
     if (any(traced)) {
         out.counts->reflection_rays += uint64_t(count(traced));
-        const Vec3<W> filter = select(p.entering, bc<W>(no_filter), bc<W>(m.filter));
+        const Vec3<W> filter =
+            select(p.entering, broadcast_vec3<W>(no_filter), broadcast_vec3<W>(m.filter));
         const vint<W> child = child_keys<W>(in.key, purpose_reflect, 0);
         for (const bool inside : {false, true}) {
             // reflected inside where the ray came from inside
@@ -279,7 +280,8 @@ template <int W, class Target>
     }
     if (any(transmits)) {
         out.counts->refraction_rays += uint64_t(count(transmits));
-        const Vec3<W> filter = select(p.entering, bc<W>(m.filter), bc<W>(no_filter));
+        const Vec3<W> filter =
+            select(p.entering, broadcast_vec3<W>(m.filter), broadcast_vec3<W>(no_filter));
         const vint<W> child = child_keys<W>(in.key, purpose_refract, 0);
         for (const bool inside : {false, true}) {
             // refracted inside where the ray came from outside
@@ -301,7 +303,7 @@ template <int W>
 inline Vec3<W> miss_radiance(const Scene& scene, const vint<W>& env_map, const Vec3<W>& dir,
                              vmask<W> active) {
     const vint<W> map = select(lt(env_map, vint<W>(0)), vint<W>(scene.environment), env_map);
-    Vec3<W> out = shade_detail::bc<W>(scene.background);
+    Vec3<W> out = broadcast_vec3<W>(scene.background);
     // one look-up per distinct map among the lanes (almost always one)
     vmask<W> todo = mask_andnot(active, lt(map, vint<W>(0)));
     while (any(todo)) {
@@ -324,7 +326,7 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
     const ShadingOptions& o = scene.shading;
     const vmask<W> local_only = mask_and(active, in.local_only);
     if (m.emissive()) {
-        accumulate<W>(out, in.path, in.weight * bc<W>(m.emission), active);
+        accumulate<W>(out, in.path, in.weight * broadcast_vec3<W>(m.emission), active);
         return;
     }
     const ShadingPointPacket<W> p = shading_point<W, F>(scene, m, in.rays, in.hits, active);

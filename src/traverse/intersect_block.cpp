@@ -269,7 +269,7 @@ void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&&
                     Leaf&& leaf) {
     struct Entry {
         uint32_t node;
-        uint16_t first, last;  // packets [first, last)
+        uint16_t first, end;  // packets [first, end)
     };
     Entry stack[traversal_stack_size];
     int top = 0;
@@ -277,30 +277,31 @@ void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&&
     for (;;) {
         const BvhNode& node = bvh.nodes[e.node];
         // first packet that touches the node (interval culling when the first one does not)
-        int f = e.first;
-        bool touched = any(test(f, node));
+        int first = e.first;
+        bool touched = any(test(first, node));
         if (!touched && block_may_hit(bounds, node)) {
-            for (++f; f < e.last; ++f) {
-                if (any(test(f, node))) {
+            for (++first; first < e.end; ++first) {
+                if (any(test(first, node))) {
                     touched = true;
                     break;
                 }
             }
         }
         if (touched) {
-            int l = e.last - 1;  // leaves test each packet of [f, l] anyway
+            int last = e.end - 1;  // leaves test each packet of [first, last] anyway
             if (node.is_leaf()) {
-                leaf(node, f, l);
+                leaf(node, first, last);
             } else {
                 // last packet that touches the node: the children need not look past it
-                while (l > f && !any(test(l, node))) --l;
-                const uint16_t f16 = static_cast<uint16_t>(f), l16 = static_cast<uint16_t>(l + 1);
+                while (last > first && !any(test(last, node))) --last;
+                const uint16_t first16 = static_cast<uint16_t>(first);
+                const uint16_t end16 = static_cast<uint16_t>(last + 1);
                 if (bounds.dir_neg[node.axis]) {
-                    stack[top++] = {e.node + 1, f16, l16};
-                    e = {node.index, f16, l16};
+                    stack[top++] = {e.node + 1, first16, end16};
+                    e = {node.index, first16, end16};
                 } else {
-                    stack[top++] = {node.index, f16, l16};
-                    e = {e.node + 1, f16, l16};
+                    stack[top++] = {node.index, first16, end16};
+                    e = {e.node + 1, first16, end16};
                 }
                 continue;
             }
@@ -445,8 +446,8 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
             traverse_block_wide<W>(
                 mesh.wide, bounds, l + 1 - f,
                 [&](int q, const WideNode& node, int s) { return test_slot(f + q, node, s); },
-                [&](const WideNode& node, int s, int qf, int ql) {
-                    for (int p = f + qf; p <= f + ql; ++p) {
+                [&](const WideNode& node, int s, int from, int to) {  // packets f + [from, to]
+                    for (int p = f + from; p <= f + to; ++p) {
                         const vmask<W> m = test_slot(p, node, s);
                         if (none(m)) continue;
                         const LeafTris tris = leaf_tris(mesh, {node.child[s], node.count[s]});
@@ -523,9 +524,9 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
             traverse_block_wide<W>(
                 mesh.wide, bounds, l + 1 - f,
                 [&](int q, const WideNode& node, int s) { return test_slot(f + q, node, s); },
-                [&](const WideNode& node, int s, int qf, int ql) {
+                [&](const WideNode& node, int s, int from, int to) {  // packets f + [from, to]
                     bool done = true;
-                    for (int p = f + qf; p <= f + ql; ++p) {
+                    for (int p = f + from; p <= f + to; ++p) {
                         // the open lanes that touch the leaf
                         const vmask<W> m = test_slot(p, node, s);
                         if (none(m)) continue;
