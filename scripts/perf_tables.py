@@ -144,12 +144,17 @@ def set_label(s, w):
     return f"{s}, W = {w}"
 
 
-def intersect_tables(m):
-    out = []
+def raced_models(m):
+    """(model, its runs, the sets raced on it) of every model some set was raced on."""
     for model, runs in intersect_data(m).items():
         sets = raced_sets(runs)
-        if not sets:
-            continue
+        if sets:
+            yield model, runs, sets
+
+
+def intersect_tables(m):
+    out = []
+    for model, runs, sets in raced_models(m):
         rows = []
         for kind in KINDS:
             row = [kind]
@@ -171,10 +176,7 @@ def intersect_tables(m):
 
 def intersect_rate_tables(m):
     out = []
-    for model, runs in intersect_data(m).items():
-        sets = raced_sets(runs)
-        if not sets:
-            continue
+    for model, runs, sets in raced_models(m):
         rows = []
         for kind in KINDS:
             row = [kind]
