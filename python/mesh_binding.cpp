@@ -20,7 +20,7 @@ namespace {
 /// A mesh as a scene of one object (so that every query goes through the same code as a
 /// render), and its BVHs.
 struct MeshHandle {
-    Scene scene;
+    SceneData scene;
     Accel accel;
     TriangleNormals normals;  ///< the triangles' unit normals, Mesh.intersect's `normal`
     double build_ms = 0.0;
@@ -93,7 +93,7 @@ bool read_index_row(const py::array& a, py::ssize_t i, int64_t (&row)[3]) {
     return true;
 }
 
-std::shared_ptr<MeshHandle> make_handle(Mesh mesh) {
+std::shared_ptr<MeshHandle> make_handle(MeshData mesh) {
     auto h = std::make_shared<MeshHandle>();
     py::gil_scoped_release release;
     const double t = now_seconds();
@@ -126,7 +126,7 @@ std::shared_ptr<MeshHandle> mesh_from_arrays(const py::object& vertices_obj,
     const py::ssize_t n = vertices.shape(0), m = triangles.shape(0);
     if (n > py::ssize_t(UINT32_MAX))
         throw BadArgument(join("vertices: ", std::to_string(n), " rows, more than 2^32 - 1"));
-    Mesh mesh;
+    MeshData mesh;
     mesh.name = "<arrays>";
     mesh.positions.resize(size_t(n));
     for (py::ssize_t i = 0; i < n; ++i) {
@@ -168,7 +168,7 @@ std::shared_ptr<MeshHandle> load_mesh_file(const std::string& path) {
         }
     }
     require_file(file);
-    Mesh mesh;
+    MeshData mesh;
     {
         py::gil_scoped_release release;
         mesh = load_mesh(file);
@@ -311,7 +311,7 @@ void save_rays(const std::string& path, const py::object& origins, const py::obj
 }
 
 py::array vertex_array(const MeshHandle& h) {
-    const Mesh& m = h.scene.meshes[0];
+    const MeshData& m = h.scene.meshes[0];
     py::array_t<float> a({py::ssize_t(m.positions.size()), py::ssize_t(3)});
     if (!m.positions.empty())
         std::memcpy(a.mutable_data(), m.positions.data(), m.positions.size() * sizeof(vec3));
@@ -319,7 +319,7 @@ py::array vertex_array(const MeshHandle& h) {
 }
 
 py::array triangle_array(const MeshHandle& h) {
-    const Mesh& m = h.scene.meshes[0];
+    const MeshData& m = h.scene.meshes[0];
     py::array_t<int32_t> a({py::ssize_t(m.tris.size()), py::ssize_t(3)});
     int32_t* out = a.mutable_data();
     for (size_t i = 0; i < m.tris.size(); ++i)

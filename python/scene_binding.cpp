@@ -22,7 +22,7 @@ namespace {
 
 /// A loaded scene and its BVHs, built once at load.
 struct SceneHandle {
-    Scene scene;
+    SceneData scene;
     Accel accel;
     Camera camera;  ///< the file's camera; render and compare change scene.camera
     double load_ms = 0.0, build_ms = 0.0;
@@ -184,7 +184,7 @@ py::dict bvh_dict(const BvhStats& s) {
 }
 
 py::dict info(const SceneHandle& h) {
-    const Scene& s = h.scene;
+    const SceneData& s = h.scene;
     const Camera& c = h.camera;
     py::dict d, camera, counts;
     d["source"] = s.source;

@@ -22,8 +22,8 @@ namespace raylane {
 namespace {
 
 /// Splits every triangle into four at its edge midpoints (positions only).
-Mesh subdivide(const Mesh& in) {
-    Mesh out;
+MeshData subdivide(const MeshData& in) {
+    MeshData out;
     out.positions = in.positions;
     out.tris.reserve(in.tris.size() * 4);
     for (const uvec3& t : in.tris) {
@@ -42,13 +42,13 @@ Mesh subdivide(const Mesh& in) {
 }
 
 /// Loaded once per process; level = number of subdivisions.
-const Mesh* model(const std::string& file, int level) {
-    static std::map<std::pair<std::string, int>, Mesh> cache;
+const MeshData* model(const std::string& file, int level) {
+    static std::map<std::pair<std::string, int>, MeshData> cache;
     auto key = std::make_pair(file, level);
     if (auto it = cache.find(key); it != cache.end()) return &it->second;
     const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/" + file;
     if (!std::filesystem::exists(path)) return nullptr;
-    Mesh m = level == 0 ? load_mesh(path) : subdivide(*model(file, level - 1));
+    MeshData m = level == 0 ? load_mesh(path) : subdivide(*model(file, level - 1));
     return &cache.emplace(key, std::move(m)).first->second;
 }
 
@@ -66,7 +66,7 @@ std::vector<std::pair<std::string, double>> phase_times(const BuildPhases& p) {
 /// longer than --benchmark_min_time=0.3: one iteration per repetition.)
 void build_mesh(benchmark::State& state, const char* file, int level, BvhBuild method,
                 bool warm_up) {
-    const Mesh* mesh = model(file, level);
+    const MeshData* mesh = model(file, level);
     if (!mesh) {
         state.SkipWithError("model not found");
         return;
@@ -116,7 +116,7 @@ void BM_BuildMedianFirst(benchmark::State& state, const char* file, int level) {
 /// (BuildParams::median_subtree; the default is 2^17): how the limit moves the build time of
 /// the larger meshes. The tree is the same for every limit.
 void BM_BuildMedianSubtree(benchmark::State& state, const char* file, int level) {
-    const Mesh* mesh = model(file, level);
+    const MeshData* mesh = model(file, level);
     if (!mesh) {
         state.SkipWithError("model not found");
         return;
@@ -137,7 +137,7 @@ void BM_BuildMedianSubtree(benchmark::State& state, const char* file, int level)
 /// build_bvh_median alone, on triangle boxes made once (the rest of BM_BuildMedian is the
 /// mesh's part: the boxes, and the vertices in leaf order).
 void BM_BuildBvhMedian(benchmark::State& state, const char* file, int level) {
-    const Mesh* mesh = model(file, level);
+    const MeshData* mesh = model(file, level);
     if (!mesh) {
         state.SkipWithError("model not found");
         return;

@@ -33,7 +33,8 @@ namespace {
 const Film* dragon_film() {
     static Film* film = []() -> Film* {
         try {
-            const Scene scene = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/dragon.json");
+            const SceneData scene =
+                load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/dragon.json");
             const Accel accel = build_accel(scene, BuildParams{});
             RenderParams params;
             params.progress = false;

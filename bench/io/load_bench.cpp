@@ -13,7 +13,7 @@
 namespace raylane {
 namespace {
 
-template <Mesh (*Load)(const std::string&)>
+template <MeshData (*Load)(const std::string&)>
 void run_load(benchmark::State& state, const std::string& path) {
     std::error_code error;
     const auto bytes = std::filesystem::file_size(path, error);
@@ -23,7 +23,7 @@ void run_load(benchmark::State& state, const std::string& path) {
     }
     size_t triangles = 0;
     for (auto _ : state) {
-        Mesh mesh = Load(path);
+        MeshData mesh = Load(path);
         triangles = mesh.tris.size();
         benchmark::DoNotOptimize(mesh.positions.data());
     }

@@ -19,7 +19,7 @@ namespace raylane {
 namespace {
 
 struct Loaded {
-    Scene scene;
+    SceneData scene;
     Accel accel;      ///< the median split (the report's build, the default)
     Accel accel_sah;  ///< binned SAH
 };

@@ -17,7 +17,7 @@ namespace raylane {
 namespace {
 
 struct Loaded {
-    Scene scene;
+    SceneData scene;
     Accel accel;
 };
 

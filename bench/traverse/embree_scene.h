@@ -24,10 +24,10 @@ inline RTCDevice embree_device(Isa isa) {
 }
 
 /// The meshes (their own coordinates) as one committed scene on the set's device.
-inline RTCScene make_embree_scene(Isa isa, const std::vector<Mesh>& meshes) {
+inline RTCScene make_embree_scene(Isa isa, const std::vector<MeshData>& meshes) {
     RTCDevice device = embree_device(isa);
     RTCScene scene = rtcNewScene(device);
-    for (const Mesh& mesh : meshes) {
+    for (const MeshData& mesh : meshes) {
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),

@@ -79,7 +79,7 @@ RaySoa make_soa(const std::vector<Ray>& rays) {
 }
 
 struct Workload {
-    Scene scene;
+    SceneData scene;
     Accel accel;      ///< the median split (the report's build; the rays' reference)
     Accel accel_sah;  ///< the binned SAH build, for the Sah contenders
     std::vector<Ray> primary, shadow, bounce;
@@ -120,7 +120,7 @@ Workload* workload(const std::string& name) {
     if (auto it = cache.find(name); it != cache.end()) return it->second.get();
     std::unique_ptr<Workload> w;
     try {
-        Scene full = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
+        SceneData full = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
         w = std::make_unique<Workload>();
         w->scene = full;
         w->scene.objects.clear();

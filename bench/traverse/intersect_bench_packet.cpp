@@ -31,7 +31,7 @@ RayPacket<W> load_packet(const RaySoa& s, size_t i, vmask<W>& active) {
 
 /// One packet at a time.
 template <int W>
-void trace_packets(const Scene& scene, const Accel& accel, const RaySoa& soa, bool any_hit,
+void trace_packets(const SceneData& scene, const Accel& accel, const RaySoa& soa, bool any_hit,
                    size_t first, size_t last) {
     for (size_t i = first; i < last; i += W) {
         vmask<W> active;
@@ -47,7 +47,7 @@ void trace_packets(const Scene& scene, const Accel& accel, const RaySoa& soa, bo
 
 /// Blocks of max_block_rays consecutive rays (a 16x16 tile for the primary rays).
 template <int W>
-void trace_blocks(const Scene& scene, const Accel& accel, const RaySoa& soa, bool any_hit,
+void trace_blocks(const SceneData& scene, const Accel& accel, const RaySoa& soa, bool any_hit,
                   size_t first, size_t last) {
     static_assert(bench::tile_rays == size_t(max_block_rays));  // a block per tile
     static_assert(bench::chunk % max_block_rays == 0);          // tasks hold whole blocks
@@ -71,7 +71,7 @@ void trace_blocks(const Scene& scene, const Accel& accel, const RaySoa& soa, boo
 
 /// The rays [first, last) as one stream through intersect_closest_stream / intersect_any_stream.
 template <int W>
-void trace_stream(const Scene& scene, const Accel& accel, const RaySoa& soa, bool any_hit,
+void trace_stream(const SceneData& scene, const Accel& accel, const RaySoa& soa, bool any_hit,
                   size_t first, size_t last) {
     thread_local std::vector<RayPacket<W>> p;
     thread_local std::vector<vmask<W>> active, occluded;

@@ -30,8 +30,8 @@ struct RaySoa {
 
 /// Traces rays [first, last) of a ray set (whole packets; padding lanes are inactive): closest
 /// hits, or any hit with `any_hit` (shadow rays).
-using TraceRays = void (*)(const Scene& scene, const Accel& accel, const RaySoa& rays, bool any_hit,
-                           size_t first, size_t last);
+using TraceRays = void (*)(const SceneData& scene, const Accel& accel, const RaySoa& rays,
+                           bool any_hit, size_t first, size_t last);
 
 /// A Raylane packet contender of one instruction set.
 struct PacketContender {

@@ -38,7 +38,7 @@ struct RayFileWorkload {
     std::string rays_path, mesh_path;
     std::vector<float> rays;  ///< 6 floats per ray
     size_t count = 0;
-    Scene scene;  ///< the mesh as one object
+    SceneData scene;  ///< the mesh as one object
     Accel accel;
     TriangleNormals normals;
 #ifdef RAYLANE_HAVE_EMBREE
@@ -65,7 +65,7 @@ inline void load_ray_file_workload(const std::string& rays_path, const std::stri
     w.rays = read_ray_file(rays_path);
     w.count = w.rays.size() / 6;
     w.mesh_path = find_model(model, ".");
-    Mesh mesh = load_mesh(w.mesh_path);
+    MeshData mesh = load_mesh(w.mesh_path);
     w.scene.materials.push_back(Material{});
     if (!mesh.tris.empty()) {
         Object object;
@@ -110,7 +110,7 @@ void run_ray_file(benchmark::State& state, int threads, bool whole, Body&& body)
 
 /// Scalar, Packet, Block and Stream: intersect_closest_batch / intersect_any_batch on the
 /// whole file (they spread the rays over the threads themselves) with the set `isa` in use,
-/// writing the arrays that Mesh.intersect and Mesh.occluded return.
+/// writing the arrays that MeshData.intersect and MeshData.occluded return.
 inline void bench_ray_file_batch(benchmark::State& state, Isa isa, bool any_hit,
                                  BatchParams params) {
     use_isa(isa);
@@ -138,7 +138,7 @@ inline RTCRayHit embree_ray(const float* r) {
     return rh;
 }
 
-/// The arrays every contender writes, as Mesh.intersect and Mesh.occluded return them: t
+/// The arrays every contender writes, as MeshData.intersect and MeshData.occluded return them: t
 /// (inf on a miss), primitive (-1), u, v, unit geometric normal (0 on a miss); occluded.
 struct RayFileOutputs {
     std::vector<float> t, u, v, normal;
@@ -158,8 +158,8 @@ struct RayFileOutputs {
 };
 
 /// Embree1 (one ray at a time), Embree16 (packets of 16 consecutive rays, `coherent` context
-/// flag or not) and Embree1M (streams of 256 rays). Each writes the answers Mesh.intersect and
-/// Mesh.occluded return (RayFileOutputs), as the Raylane contenders do.
+/// flag or not) and Embree1M (streams of 256 rays). Each writes the answers MeshData.intersect and
+/// MeshData.occluded return (RayFileOutputs), as the Raylane contenders do.
 inline void bench_ray_file_embree(benchmark::State& state, Isa isa, bool any_hit, int api,
                                   bool coherent, int threads) {
     const RayFileWorkload& w = ray_file_workload();

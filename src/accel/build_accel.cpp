@@ -23,7 +23,7 @@ BuildParams build_params(std::string_view bvh) {
     return params;
 }
 
-Aabb object_bounds(const Scene& scene, const Object& object) {
+Aabb object_bounds(const SceneData& scene, const Object& object) {
     Aabb box;
     switch (object.kind) {
         case ShapeKind::sphere: {
@@ -56,10 +56,11 @@ Aabb object_bounds(const Scene& scene, const Object& object) {
     return object.has_transform ? transformed(box, object.world_from_object) : box;
 }
 
-Accel build_accel(const Scene& scene, const BuildParams& params) {
+Accel build_accel(const SceneData& scene, const BuildParams& params) {
     Accel accel;
     accel.meshes.reserve(scene.meshes.size());
-    for (const Mesh& mesh : scene.meshes) accel.meshes.push_back(build_mesh_accel(mesh, params));
+    for (const MeshData& mesh : scene.meshes)
+        accel.meshes.push_back(build_mesh_accel(mesh, params));
     std::vector<Aabb> bounded;
     std::vector<uint32_t> bounded_ids;
     accel.object_bounds.resize(scene.objects.size());

@@ -164,7 +164,7 @@ Bvh build_bvh_median_isa(std::span<const Aabb> prim_bounds, const BuildParams& p
 /// the leaf boxes from the vertices in leaf order, read in sequence, instead of the boxes
 /// gathered by id. The same min and max of the same numbers in the same order, so the same
 /// tree bit for bit (tests/accel/build_median_golden_test.cpp).
-MeshAccel build_mesh_accel_isa(const Mesh& mesh, const BuildParams& params) {
+MeshAccel build_mesh_accel_isa(const MeshData& mesh, const BuildParams& params) {
     MeshAccel accel;
     const size_t n = mesh.tris.size();
     if (n == 0) return accel;

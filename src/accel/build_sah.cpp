@@ -162,7 +162,7 @@ Bvh build_bvh_sah(std::span<const Aabb> prim_bounds, const BuildParams& params) 
     return bvh;
 }
 
-MeshAccel build_mesh_accel_sah(const Mesh& mesh, const BuildParams& params) {
+MeshAccel build_mesh_accel_sah(const MeshData& mesh, const BuildParams& params) {
     MeshAccel accel;
     std::vector<Aabb> boxes(mesh.tris.size());
     for (size_t i = 0; i < boxes.size(); ++i)

@@ -138,17 +138,17 @@ struct Accel {
     Bvh top;
     std::vector<Aabb> object_bounds;  ///< world-space bounds per object (empty for planes)
     std::vector<uint32_t> unbounded;  ///< object indices tested outside the BVH
-    std::vector<MeshAccel> meshes;    ///< one per Scene::meshes entry
+    std::vector<MeshAccel> meshes;    ///< one per SceneData::meshes entry
 };
 
 /// A mesh's BVH (params.method: median split or SAH) and its vertices in leaf order.
-MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params);
+MeshAccel build_mesh_accel(const MeshData& mesh, const BuildParams& params);
 /// build_mesh_accel's SAH form (build_sah.cpp).
-MeshAccel build_mesh_accel_sah(const Mesh& mesh, const BuildParams& params);
-Accel build_accel(const Scene& scene, const BuildParams& params);
+MeshAccel build_mesh_accel_sah(const MeshData& mesh, const BuildParams& params);
+Accel build_accel(const SceneData& scene, const BuildParams& params);
 
 /// World-space bounds of one object (a transformed shape's box covers its 8 corners).
-Aabb object_bounds(const Scene& scene, const Object& object);
+Aabb object_bounds(const SceneData& scene, const Object& object);
 
 /// Statistics `raylane info` prints.
 struct BvhStats {

@@ -9,7 +9,7 @@
     inline namespace ns {                                                                  \
     Bvh build_bvh_median_isa(std::span<const Aabb> prim_bounds, const BuildParams& params, \
                              MedianSplitPaths* paths);                                     \
-    MeshAccel build_mesh_accel_isa(const Mesh& mesh, const BuildParams& params);           \
+    MeshAccel build_mesh_accel_isa(const MeshData& mesh, const BuildParams& params);       \
     }                                                                                      \
     }
 RAYLANE_FOR_EACH_ISA(RAYLANE_DECLARE)
@@ -22,7 +22,7 @@ Bvh build_bvh_median(std::span<const Aabb> prim_bounds, const BuildParams& param
     RAYLANE_DISPATCH(build_bvh_median_isa(prim_bounds, params, paths));
 }
 
-MeshAccel build_mesh_accel(const Mesh& mesh, const BuildParams& params) {
+MeshAccel build_mesh_accel(const MeshData& mesh, const BuildParams& params) {
     RAYLANE_DISPATCH(build_mesh_accel_isa(mesh, params));
 }
 

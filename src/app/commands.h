@@ -62,7 +62,7 @@ void apply_resolution(Camera& camera, int width, int height);
 /// scene (io/model_scene.h) for .obj and .ply, else a JSON scene file. A file that is none of
 /// these (no .json extension and not a JSON object) throws InputError saying what was expected;
 /// a path that is missing or a folder throws scene_file_problem's line.
-Scene load_command_scene(const std::string& path);
+SceneData load_command_scene(const std::string& path);
 
 /// Why `path` cannot be a scene or a model: "no such file", "is a folder, not a scene (.json) or a
 /// model (.obj, .ply)", ...; empty when it is a file. The command line and Python say the same.

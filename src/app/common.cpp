@@ -199,7 +199,7 @@ bool starts_like_json(const std::string& path) {
 
 }  // namespace
 
-Scene load_command_scene(const std::string& path) {
+SceneData load_command_scene(const std::string& path) {
     if (path.empty()) return make_builtin_scene();
     if (const std::string problem = scene_file_problem(path); !problem.empty())
         throw InputError(path + ": " + problem);
@@ -207,7 +207,7 @@ Scene load_command_scene(const std::string& path) {
         throw InputError(path +
                          ": neither a scene nor a model: expected a JSON scene (.json) or a "
                          "model (.obj, .ply, .obj.gz, .ply.gz)");
-    Scene scene = is_model_file(path) ? load_model_scene(path) : load_scene(path);
+    SceneData scene = is_model_file(path) ? load_model_scene(path) : load_scene(path);
     for (const std::string& w : scene.warnings)
         std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
     return scene;

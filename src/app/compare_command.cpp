@@ -23,7 +23,7 @@ struct CompareOptions {
 };
 
 int run_compare(const CompareOptions& o) {
-    Scene scene = load_command_scene(o.scene_path);
+    SceneData scene = load_command_scene(o.scene_path);
     apply_resolution(scene.camera, o.width, o.height);
     const Accel accel = build_accel(scene, build_params(o.bvh));
     RenderParams params;

@@ -34,7 +34,7 @@ void print_wide(const WideStats& s, size_t triangles, size_t shared_bytes) {
 
 int run_info(const std::string& path, const std::string& bvh) {
     const double t_load = now_seconds();
-    const Scene scene = load_command_scene(path);
+    const SceneData scene = load_command_scene(path);
     const double load_ms = elapsed_ms(t_load);
     const double t_build = now_seconds();
     const Accel accel = build_accel(scene, build_params(bvh));

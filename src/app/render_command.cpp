@@ -51,7 +51,7 @@ std::string default_output(const RenderOptions& o, bool frames) {
 }
 
 /// The job: the scene at its resolution, the frames and part to render, the renderer's options.
-RenderJob make_job(const RenderOptions& o, Scene scene, const std::vector<Aov>& aovs) {
+RenderJob make_job(const RenderOptions& o, SceneData scene, const std::vector<Aov>& aovs) {
     RenderJob job;
     job.scene = std::move(scene);
     apply_resolution(job.scene.camera, o.width, o.height);

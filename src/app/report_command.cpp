@@ -114,7 +114,7 @@ std::string seconds_left(double start, int done, int total) {
 
 struct LoadedScene {
     std::string path, stem;
-    Scene scene;
+    SceneData scene;
     double load_ms = 0.0;
 };
 
@@ -208,7 +208,7 @@ Reference scene_reference(const LoadedScene& ls, const Accel& accel, const Repor
 }
 
 /// The sweep the options ask for: their paths and sample counts, the scene's knobs.
-SweepParams scene_sweep_params(const ReportOptions& o, const Scene& scene, int workers) {
+SweepParams scene_sweep_params(const ReportOptions& o, const SceneData& scene, int workers) {
     SweepParams sp;
     sp.paths.clear();
     for (const std::string& p : o.paths)

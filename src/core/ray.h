@@ -33,7 +33,7 @@ struct Ray {
 struct Hit {
     float t = infinity;
     uint32_t prim = invalid_id;    ///< triangle index in its mesh (0 for analytic shapes)
-    uint32_t object = invalid_id;  ///< index into Scene::objects
+    uint32_t object = invalid_id;  ///< index into SceneData::objects
     vec2 uv{0.0f};                 ///< triangle barycentrics (u, v) or shape parameters
     bool hit() const { return prim != invalid_id; }
 };

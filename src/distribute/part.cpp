@@ -11,7 +11,7 @@
 
 namespace raylane {
 
-PartInfo make_part_info(const Scene& scene, const RenderParams& params, const std::string& path,
+PartInfo make_part_info(const SceneData& scene, const RenderParams& params, const std::string& path,
                         const std::string& bvh) {
     PartInfo info;
     info.scene = scene_hash(scene);

@@ -26,7 +26,7 @@ struct PartInfo {
 
 /// The settings of a render: aov, tonemap (the scene's), spp, seed, path ("packet", "scalar"),
 /// bvh ("median", "sah"), light_samples and glossy_samples, and the scene's hash.
-PartInfo make_part_info(const Scene& scene, const RenderParams& params, const std::string& path,
+PartInfo make_part_info(const SceneData& scene, const RenderParams& params, const std::string& path,
                         const std::string& bvh);
 
 /// The value of a setting, or "" when the info has none.

@@ -15,8 +15,8 @@
 namespace raylane {
 
 struct RenderJob {
-    Scene scene;   ///< its camera is the frame's while a frame renders (render_part)
-    Camera still;  ///< the scene's own camera, which the animation moves
+    SceneData scene;  ///< its camera is the frame's while a frame renders (render_part)
+    Camera still;     ///< the scene's own camera, which the animation moves
     Accel accel;
     RenderParams params;    ///< the user's seed; no region; params.aov is aovs[0]
     std::vector<Aov> aovs;  ///< what each frame renders: one AOV, or all four (--aov all)

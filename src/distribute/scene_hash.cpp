@@ -30,13 +30,13 @@ static_assert(sizeof(vec3) == 12 && sizeof(vec2) == 8 && sizeof(uvec3) == 12);
 
 }  // namespace
 
-std::string scene_hash(const Scene& scene) {
+std::string scene_hash(const SceneData& scene) {
     Fnv1a hash;
     if (scene.source == "<built-in>" || !hash_file(hash, scene.source)) {
         hash = Fnv1a{};
         hash.text(scene.source);
     }
-    for (const Mesh& m : scene.meshes) {
+    for (const MeshData& m : scene.meshes) {
         hash.array(m.positions), hash.array(m.normals), hash.array(m.uvs);
         hash.array(m.tris), hash.array(m.normal_tris), hash.array(m.uv_tris);
     }

@@ -15,6 +15,6 @@ namespace raylane {
 /// its name ("<built-in>"). A scene whose file cannot be read any more hashes its name in its
 /// place. The same files give the same hash on any machine; --width, --height and the other
 /// command-line settings are not part of it.
-std::string scene_hash(const Scene& scene);
+std::string scene_hash(const SceneData& scene);
 
 }  // namespace raylane

@@ -6,7 +6,7 @@
 
 namespace raylane {
 
-void drop_zero_area_triangles(Mesh& mesh, const std::string& name_for_errors) {
+void drop_zero_area_triangles(MeshData& mesh, const std::string& name_for_errors) {
     const bool has_uv = !mesh.uv_tris.empty(), has_normal = !mesh.normal_tris.empty();
     const bool has_material = !mesh.tri_material.empty();
     size_t kept = 0;

@@ -12,6 +12,6 @@ namespace raylane {
 /// index, and counts them in
 /// mesh.dropped_triangles. Slivers with any area stay. Throws InputError "name: ..." when no
 /// triangle is left.
-void drop_zero_area_triangles(Mesh& mesh, const std::string& name_for_errors);
+void drop_zero_area_triangles(MeshData& mesh, const std::string& name_for_errors);
 
 }  // namespace raylane

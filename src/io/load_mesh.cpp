@@ -23,7 +23,7 @@ std::string mesh_extension(const std::string& path) {
     return dot == std::string::npos ? name.substr(stem_end) : name.substr(dot);
 }
 
-Mesh load_mesh(const std::string& path) {
+MeshData load_mesh(const std::string& path) {
     static_assert(max_inflated_bytes == static_cast<size_t>(max_mesh_file_bytes));
     std::error_code error;
     const auto bytes = std::filesystem::file_size(path, error);  // (regular files only)

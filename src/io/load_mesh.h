@@ -16,7 +16,7 @@ inline constexpr int64_t max_mesh_file_bytes = int64_t{1} << 31;
 /// max_mesh_file_bytes throws InputError "path: file is N bytes, over the limit of 2^31 for a
 /// mesh" before anything is read (for .gz files the decompressed bytes have the same limit); any
 /// other extension "path: unsupported mesh format ...".
-Mesh load_mesh(const std::string& path);
+MeshData load_mesh(const std::string& path);
 
 /// The lower-case extension of `path`'s file name as load_mesh reads it: ".obj", ".obj.gz" for
 /// a compressed one, ".gz" or "" when there is no other.

@@ -42,10 +42,10 @@ struct ForwardRef {
 };
 
 struct ObjReader {
-    ObjReader(const std::string& file_name, Mesh& out) : file(file_name), mesh(out) {}
+    ObjReader(const std::string& file_name, MeshData& out) : file(file_name), mesh(out) {}
 
     const std::string& file;
-    Mesh& mesh;
+    MeshData& mesh;
     size_t line = 0;
     const char* p = nullptr;     ///< cursor inside the current line
     const char* end = nullptr;   ///< end of the current line, before its '\n'
@@ -314,8 +314,8 @@ struct ObjReader {
 
 }  // namespace
 
-Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_errors) {
-    Mesh mesh;
+MeshData load_obj_from_memory(std::string_view text, const std::string& name_for_errors) {
+    MeshData mesh;
     mesh.name = file_name_of(name_for_errors);
     refuse_non_text(text, name_for_errors, "OBJ");
     ObjReader reader(name_for_errors, mesh);
@@ -343,7 +343,7 @@ Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_err
     return mesh;
 }
 
-Mesh load_obj(const std::string& path) {
+MeshData load_obj(const std::string& path) {
     return load_obj_from_memory(read_model_file(path).view(), path);
 }
 

@@ -1,4 +1,4 @@
-// io: Wavefront OBJ meshes -> scene/scene.h Mesh. Sibling of load_ply.h; load_mesh.h picks one.
+// io: Wavefront OBJ meshes -> scene/scene.h MeshData. Sibling of load_ply.h; load_mesh.h picks one.
 #pragma once
 
 #include <string>
@@ -8,7 +8,7 @@
 
 namespace raylane {
 
-/// Reads an OBJ file into a Mesh (positions, normals, uvs with their own index triples); a
+/// Reads an OBJ file into a MeshData (positions, normals, uvs with their own index triples); a
 /// name ending in .gz is a gzip-compressed file, decompressed into memory first (gzip_file.h),
 /// and line numbers in messages count in the decompressed text.
 ///
@@ -20,9 +20,9 @@ namespace raylane {
 /// a UTF-8 byte order mark, `#` comments (also after the values of a line) and a missing final
 /// newline are fine.
 ///
-/// Materials: `usemtl name` gives the faces that follow that material (Mesh::material_names,
-/// Mesh::tri_material); faces before any `usemtl`, or after a bare one, get the material named
-/// "" (the object's own); `mtllib` names go to Mesh::material_libraries, as written. The scene
+/// Materials: `usemtl name` gives the faces that follow that material (MeshData::material_names,
+/// MeshData::tri_material); faces before any `usemtl`, or after a bare one, get the material named
+/// "" (the object's own); `mtllib` names go to MeshData::material_libraries, as written. The scene
 /// loader reads the libraries (load_mtl.h).
 ///
 /// Ignored: `o g s l p` and any other keyword (`vp`, `curv`, ...), i.e. any line whose first
@@ -40,10 +40,10 @@ namespace raylane {
 /// out of range (reported on the line of the first face using it); a face with fewer than 3
 /// corners; a face mixing index forms; a file without faces. Not supported: `\` line
 /// continuation.
-Mesh load_obj(const std::string& path);
+MeshData load_obj(const std::string& path);
 
 /// Same as load_obj on text already in memory; `name_for_errors` prefixes messages and
 /// gives the mesh its name.
-Mesh load_obj_from_memory(std::string_view text, const std::string& name_for_errors);
+MeshData load_obj_from_memory(std::string_view text, const std::string& name_for_errors);
 
 }  // namespace raylane

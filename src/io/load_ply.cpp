@@ -26,13 +26,14 @@ using namespace ply;  // NOLINT(google-build-using-namespace): the header's voca
 // body, shared ---------------------------------------------------------------------------
 
 struct PlyReader {
-    PlyReader(std::string_view body, const std::string& file_name, const PlyHeader& head, Mesh& out)
+    PlyReader(std::string_view body, const std::string& file_name, const PlyHeader& head,
+              MeshData& out)
         : bytes(body), file(file_name), header(head), mesh(out) {}
 
     std::string_view bytes;
     const std::string& file;
     const PlyHeader& header;
-    Mesh& mesh;
+    MeshData& mesh;
     std::vector<uint32_t> corners;  ///< vertex indices of the face being read; reused
 
     uint64_t vertex_count() const { return header.elements[header.vertex_element].count; }
@@ -496,9 +497,9 @@ struct PlyReader {
 
 }  // namespace
 
-Mesh load_ply_from_memory(std::string_view bytes, const std::string& name_for_errors) {
+MeshData load_ply_from_memory(std::string_view bytes, const std::string& name_for_errors) {
     const PlyHeader header = parse_header(bytes, name_for_errors);
-    Mesh mesh;
+    MeshData mesh;
     mesh.name = file_name_of(name_for_errors);
     PlyReader reader(bytes, name_for_errors, header, mesh);
     constexpr bool little = std::endian::native == std::endian::little;
@@ -520,7 +521,7 @@ Mesh load_ply_from_memory(std::string_view bytes, const std::string& name_for_er
     return mesh;
 }
 
-Mesh load_ply(const std::string& path) {
+MeshData load_ply(const std::string& path) {
     return load_ply_from_memory(read_model_file(path).view(), path);
 }
 

@@ -1,4 +1,4 @@
-// io: Stanford PLY meshes -> scene/scene.h Mesh. Sibling of load_obj.h; load_mesh.h picks one.
+// io: Stanford PLY meshes -> scene/scene.h MeshData. Sibling of load_obj.h; load_mesh.h picks one.
 #pragma once
 
 #include <string>
@@ -43,10 +43,10 @@ namespace raylane {
 /// too many values on an ASCII line, bad or out-of-range numbers, NaN or infinite vertex
 /// attributes, negative list count, face with fewer than 3 vertices, vertex index out of range, a
 /// file without faces.
-Mesh load_ply(const std::string& path);
+MeshData load_ply(const std::string& path);
 
 /// Same as load_ply on bytes already in memory; `name_for_errors` prefixes messages and gives
 /// the mesh its name.
-Mesh load_ply_from_memory(std::string_view bytes, const std::string& name_for_errors);
+MeshData load_ply_from_memory(std::string_view bytes, const std::string& name_for_errors);
 
 }  // namespace raylane

@@ -20,11 +20,11 @@
 
 namespace raylane {
 
-Scene SceneReader::read(const Json& root) {
+SceneData SceneReader::read(const Json& root) {
     Node top{&root, "$"};
     expect_keys(top, {"version", "description", "camera", "background", "environment", "shading",
                       "tonemap", "materials", "objects", "lights"});
-    Scene scene;
+    SceneData scene;
     scene.source = file_;
     if (const Json* v = find(top, "version")) {
         Node n{v, member_path("$", "version")};
@@ -256,8 +256,8 @@ ShadingOptions SceneReader::read_shading(const Node& n) const {
     return o;
 }
 
-Scene load_scene_from_string(std::string_view json, const std::string& path_for_errors,
-                             std::map<std::string, Mesh> loaded) {
+SceneData load_scene_from_string(std::string_view json, const std::string& path_for_errors,
+                                 std::map<std::string, MeshData> loaded) {
     Json root = parse_json(json, path_for_errors, max_scene_json_depth);
     return SceneReader(path_for_errors, scene_dir(path_for_errors), std::move(loaded)).read(root);
 }
@@ -267,7 +267,7 @@ std::string scene_dir(const std::string& scene_path) {
     return dir.empty() ? std::string(".") : dir.string();
 }
 
-Scene load_scene(const std::string& path) {
+SceneData load_scene(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) {
         throw InputError(path + ": cannot read: " + std::generic_category().message(EISDIR));

@@ -32,7 +32,7 @@ double emitter_area(const Light& light) {
 
 }  // namespace
 
-Light SceneReader::read_light(const Node& n, Scene& scene) {
+Light SceneReader::read_light(const Node& n, SceneData& scene) {
     expect(n, n.j->is_object(), "an object");
     int type = choice(child(n, "type"), {"point", "directional", "rect", "disk", "box"});
     Light light;
@@ -124,7 +124,7 @@ void SceneReader::check_area_light(const Node& n, const Light& light) const {
 /// The visible stand-in of an area light (report-scenes.md 1.4): an object of emitted
 /// radiance colour * intensity / (4 pi A) that casts no shadows. A is the report's "2ab":
 /// twice the area of a rectangle or disc, 2ab for a box with a, b its two largest extents.
-void SceneReader::add_emitter(const Light& light, Scene& scene) {
+void SceneReader::add_emitter(const Light& light, SceneData& scene) {
     Material m;
     m.name = "<area light " + std::to_string(scene.lights.size()) + ">";
     Object o;

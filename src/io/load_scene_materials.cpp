@@ -13,7 +13,7 @@
 
 namespace raylane {
 
-uint32_t SceneReader::add_material(Scene& scene, Material m) {
+uint32_t SceneReader::add_material(SceneData& scene, Material m) {
     const uint32_t index = uint32_t(scene.materials.size());
     material_ids_.emplace(m.name, index);
     scene.materials.push_back(std::move(m));
@@ -22,7 +22,7 @@ uint32_t SceneReader::add_material(Scene& scene, Material m) {
 
 /// A texture given as a file name, {"file", "filter", "encoding", "repeat"} or
 /// {"checker": [colour a, colour b], "checks"}; loaded once per file and options.
-int32_t SceneReader::read_texture(const Node& n, Scene& scene) {
+int32_t SceneReader::read_texture(const Node& n, SceneData& scene) {
     Texture options;
     ImageEncoding encoding = ImageEncoding::linear;
     std::string file;
@@ -76,7 +76,7 @@ int32_t SceneReader::read_texture(const Node& n, Scene& scene) {
 
 /// The texture of a found file with these options, loaded once per file and options.
 int32_t SceneReader::texture_from_file(const std::string& resolved, ImageEncoding encoding,
-                                       TextureFilter filter, bool repeat, Scene& scene) {
+                                       TextureFilter filter, bool repeat, SceneData& scene) {
     const std::string key = resolved + (encoding == ImageEncoding::srgb ? "|srgb" : "|lin") +
                             (filter == TextureFilter::nearest ? "|n" : "|b") +
                             (repeat ? "|r" : "|c");
@@ -89,7 +89,7 @@ int32_t SceneReader::texture_from_file(const std::string& resolved, ImageEncodin
     return textures_[key];
 }
 
-void SceneReader::read_materials(const Node& n, Scene& scene) {
+void SceneReader::read_materials(const Node& n, SceneData& scene) {
     expect(n, n.j->is_object(), "an object");
     for (auto it = n.j->begin(); it != n.j->end(); ++it) {
         Node m{&it.value(), member_path(n.path, it.key())};
@@ -98,7 +98,7 @@ void SceneReader::read_materials(const Node& n, Scene& scene) {
     }
 }
 
-Material SceneReader::read_material(const Node& m, const std::string& name, Scene& scene) {
+Material SceneReader::read_material(const Node& m, const std::string& name, SceneData& scene) {
     expect_keys(m, {"model",
                     "preset",
                     "merl_colour",
@@ -214,7 +214,7 @@ void SceneReader::read_refraction(const Node& r, Material& mat) const {
     }
 }
 
-uint32_t SceneReader::material_index(const Node& object, Scene& scene) {
+uint32_t SceneReader::material_index(const Node& object, SceneData& scene) {
     std::string name = "default";
     const Json* v = find(object, "material");
     if (v) name = text(Node{v, member_path(object.path, "material")});

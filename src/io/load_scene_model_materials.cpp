@@ -24,7 +24,7 @@ std::string library_path(const std::string& model_path, const std::string& name)
 /// The library `name` (as the model file wrote it, '\' made '/') from the model's folder, read
 /// once; nullptr, with one warning, when it cannot be found or read.
 const MtlLibrary* SceneReader::material_library(const std::string& model_path,
-                                                const std::string& name, Scene& scene) {
+                                                const std::string& name, SceneData& scene) {
     const std::string key = library_path(model_path, name);
     if (const auto it = libraries_.find(key); it != libraries_.end())
         return it->second ? &*it->second : nullptr;
@@ -50,7 +50,7 @@ const MtlLibrary* SceneReader::material_library(const std::string& model_path,
 /// Raylane's material for an MTL material, its textures found from the library's folder (a
 /// texture that cannot be read: one warning, and none).
 Material SceneReader::mtl_material(const MtlMaterial& m, const std::string& library_path,
-                                   Scene& scene) {
+                                   SceneData& scene) {
     Material out = material_from_mtl(m);
     const std::filesystem::path dir = std::filesystem::path(library_path).parent_path();
     auto texture = [&](const std::string& file, ImageEncoding encoding) -> int32_t {
@@ -73,7 +73,7 @@ Material SceneReader::mtl_material(const MtlMaterial& m, const std::string& libr
 /// `fallback` (the default material) with one warning.
 uint32_t SceneReader::model_material(const std::string& name, const std::string& model_path,
                                      const std::vector<std::string>& libraries, uint32_t fallback,
-                                     Scene& scene) {
+                                     SceneData& scene) {
     if (const auto it = material_ids_.find(name); it != material_ids_.end()) return it->second;
     for (const std::string& lib_name : libraries) {
         const MtlLibrary* lib = material_library(model_path, lib_name, scene);

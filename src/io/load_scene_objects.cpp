@@ -96,7 +96,7 @@ glm::dmat4 SceneReader::read_fit(const Node& n, const Aabb& bounds) const {
     return make_fit(bounds, s, offset);
 }
 
-void SceneReader::read_object(const Node& n, Scene& scene) {
+void SceneReader::read_object(const Node& n, SceneData& scene) {
     expect(n, n.j->is_object(), "an object");
     constexpr ShapeKind kinds[] = {ShapeKind::sphere, ShapeKind::box,      ShapeKind::cylinder,
                                    ShapeKind::plane,  ShapeKind::triangle, ShapeKind::mesh};
@@ -155,7 +155,8 @@ void SceneReader::expect_shape_keys(const Node& n, ShapeKind kind) const {
 
 /// The analytic shape of an object (not a mesh): appended to its scene array, its index in
 /// object.shape. Its points are in its own space or, when not `own_space`, world points.
-void SceneReader::read_shape(const Node& n, bool own_space, Object& object, Scene& scene) const {
+void SceneReader::read_shape(const Node& n, bool own_space, Object& object,
+                             SceneData& scene) const {
     auto shape_point = [&](const Node& p) { return own_space ? vector(p) : point(p); };
     const vec3 shape_origin = own_space ? vec3(0.0f) : vec3(-world_origin_);
     switch (object.kind) {
@@ -226,7 +227,7 @@ void SceneReader::read_shape(const Node& n, bool own_space, Object& object, Scen
 /// scene.meshes with `object` to scene.objects. An object with a "material" key gives it to
 /// every face; without one, a file that names materials gives one mesh and object per material
 /// (split_by_material, model_material), the faces it leaves unnamed the default material.
-void SceneReader::read_mesh(const Node& n, const Transform& t, Object object, Scene& scene) {
+void SceneReader::read_mesh(const Node& n, const Transform& t, Object object, SceneData& scene) {
     Node file = child(n, "file");
     std::string name = text(file);
     std::string resolved;
@@ -239,7 +240,7 @@ void SceneReader::read_mesh(const Node& n, const Transform& t, Object object, Sc
     if (it == meshes_.end()) it = meshes_.emplace(resolved, load_mesh(resolved)).first;
     // the file's last object takes the mesh: a copy is megabytes of fresh pages
     const bool last_use = --mesh_uses_[resolved] <= 0;
-    Mesh mesh = last_use ? std::move(meshes_.extract(it).mapped()) : it->second;
+    MeshData mesh = last_use ? std::move(meshes_.extract(it).mapped()) : it->second;
     if (mesh.name.empty()) mesh.name = name;
     // normals: "auto" (the file's, else smooth), "file", "smooth" or "flat"
     const char* modes[] = {"auto", "file", "smooth", "flat"};

@@ -110,13 +110,13 @@ std::string model_scene_json(const std::string& file, const Aabb& bounds) {
     return j;
 }
 
-Scene load_model_scene(const std::string& path) {
+SceneData load_model_scene(const std::string& path) {
     const std::string dir = scene_dir(path);
     const std::string file = std::filesystem::path(path).filename().string();
     const std::string resolved = find_model(file, dir);
-    Mesh mesh = load_mesh(resolved);
+    MeshData mesh = load_mesh(resolved);
     const std::string json = model_scene_json(file, mesh_bounds(mesh));
-    std::map<std::string, Mesh> loaded;
+    std::map<std::string, MeshData> loaded;
     loaded.emplace(resolved, std::move(mesh));
     return load_scene_from_string(json, path, std::move(loaded));
 }

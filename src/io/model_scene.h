@@ -28,6 +28,6 @@ bool is_model_file(const std::string& path);
 std::string model_scene_json(const std::string& file, const Aabb& bounds);
 
 /// Reads the model at `path` once and loads model_scene_json of it (errors name `path`).
-Scene load_model_scene(const std::string& path);
+SceneData load_model_scene(const std::string& path);
 
 }  // namespace raylane

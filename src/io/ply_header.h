@@ -42,7 +42,7 @@ inline bool fits_type(long long v, PlyType t) {
     return !is_integer(t) || (v >= info(t).lo && v <= info(t).hi);
 }
 
-/// What a property feeds in the Mesh; the first role_count roles are vertex attributes.
+/// What a property feeds in the MeshData; the first role_count roles are vertex attributes.
 enum Role : uint8_t {
     role_x,
     role_y,

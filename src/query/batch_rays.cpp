@@ -15,9 +15,9 @@ bool rays_coherent(const RayArrays& rays, size_t first, size_t count) {
     return cone.inside;
 }
 
-TriangleNormals make_triangle_normals(const Scene& scene) {
+TriangleNormals make_triangle_normals(const SceneData& scene) {
     TriangleNormals normals;
-    for (const Mesh& mesh : scene.meshes) {
+    for (const MeshData& mesh : scene.meshes) {
         std::vector<vec3>& n = normals.meshes.emplace_back(mesh.tris.size());
         for (size_t i = 0; i < mesh.tris.size(); ++i) {
             const glm::uvec3 t = mesh.tris[i];

@@ -24,7 +24,7 @@ namespace {
 
 /// The geometric normal surface_at gives for ray i's hit: from the table when there is one,
 /// straight from the triangle's corners for a mesh otherwise.
-vec3 geometric_normal(const Scene& scene, const TriangleNormals* normals, const RayArrays& rays,
+vec3 geometric_normal(const SceneData& scene, const TriangleNormals* normals, const RayArrays& rays,
                       size_t i, const Hit& hit) {
     if (!hit.hit()) return vec3(0.0f);
     const Object& object = scene.objects[hit.object];
@@ -34,7 +34,7 @@ vec3 geometric_normal(const Scene& scene, const TriangleNormals* normals, const 
         read_ray(rays, i, ray);
         return surface_at(scene, ray, hit).geometric_normal;
     }
-    const Mesh& mesh = scene.meshes[object.shape];
+    const MeshData& mesh = scene.meshes[object.shape];
     const glm::uvec3 tri = mesh.tris[hit.prim];
     return geometry_triangle<float>(mesh.positions[tri.x], mesh.positions[tri.y],
                                     mesh.positions[tri.z], hit.uv.x, hit.uv.y)
@@ -43,7 +43,7 @@ vec3 geometric_normal(const Scene& scene, const TriangleNormals* normals, const 
 
 /// The scene and what a batch writes.
 struct Output {
-    const Scene& scene;
+    const SceneData& scene;
     const RayArrays& rays;
     const HitBuffers& hits;
     const TriangleNormals* normals;
@@ -236,7 +236,7 @@ void packet_task(const RayArrays& rays, Coherence coherence, size_t first, size_
 }
 
 template <int W>
-void closest_packet_task(const Scene& scene, const Accel& accel, const Output& out,
+void closest_packet_task(const SceneData& scene, const Accel& accel, const Output& out,
                          Coherence coherence, size_t first, size_t last) {
     const RayArrays& rays = out.rays;
     StreamPackets<W>& s = stream_packets<W>();
@@ -257,8 +257,8 @@ void closest_packet_task(const Scene& scene, const Accel& accel, const Output& o
 }
 
 template <int W>
-void any_packet_task(const Scene& scene, const Accel& accel, const RayArrays& rays, uint8_t* out,
-                     Coherence coherence, size_t first, size_t last) {
+void any_packet_task(const SceneData& scene, const Accel& accel, const RayArrays& rays,
+                     uint8_t* out, Coherence coherence, size_t first, size_t last) {
     StreamPackets<W>& s = stream_packets<W>();
     packet_task<W>(
         rays, coherence, first, last, s,
@@ -278,7 +278,7 @@ void any_packet_task(const Scene& scene, const Accel& accel, const RayArrays& ra
 
 }  // namespace
 
-void intersect_closest_batch_isa(const Scene& scene, const Accel& accel, const RayArrays& rays,
+void intersect_closest_batch_isa(const SceneData& scene, const Accel& accel, const RayArrays& rays,
                                  const HitBuffers& hits, const BatchParams& params,
                                  const TriangleNormals* normals) {
     const Output out{scene, rays, hits, normals};
@@ -296,7 +296,7 @@ void intersect_closest_batch_isa(const Scene& scene, const Accel& accel, const R
     });
 }
 
-void intersect_any_batch_isa(const Scene& scene, const Accel& accel, const RayArrays& rays,
+void intersect_any_batch_isa(const SceneData& scene, const Accel& accel, const RayArrays& rays,
                              uint8_t* occluded, const BatchParams& params) {
     run_tasks(rays.count, params.threads, [&](size_t first, size_t last) {
         if (params.path == BatchPath::packet) {

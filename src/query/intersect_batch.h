@@ -30,7 +30,7 @@ struct RayArrays {
 struct HitBuffers {
     float* t = nullptr;
     int32_t* prim = nullptr;    ///< triangle index in its mesh
-    int32_t* object = nullptr;  ///< index into Scene::objects
+    int32_t* object = nullptr;  ///< index into SceneData::objects
     float* u = nullptr;         ///< barycentric weight of the triangle's second corner
     float* v = nullptr;         ///< and of its third
     float* normal = nullptr;    ///< unit geometric normal of a mesh triangle (winding side)
@@ -49,12 +49,12 @@ struct BatchParams {
     int threads = 0;  ///< 0 = all hardware threads
 };
 
-/// The unit geometric normal of every triangle of every mesh (Scene::meshes order), as
+/// The unit geometric normal of every triangle of every mesh (SceneData::meshes order), as
 /// surface_at gives it, so that a batch writes HitBuffers::normal with one look-up per hit.
 struct TriangleNormals {
     std::vector<std::vector<vec3>> meshes;
 };
-TriangleNormals make_triangle_normals(const Scene& scene);
+TriangleNormals make_triangle_normals(const SceneData& scene);
 
 /// Rays per task of a batch: each task is a stream of at most this many rays.
 inline constexpr size_t batch_task_rays = 16384;
@@ -65,13 +65,13 @@ inline constexpr size_t batch_task_rays = 16384;
 /// tracing, as the renderers do, and the calling thread's floating-point modes are restored.
 /// `normals`, when given, must be make_triangle_normals(scene); without it the normals are
 /// computed hit by hit.
-void intersect_closest_batch(const Scene& scene, const Accel& accel, const RayArrays& rays,
+void intersect_closest_batch(const SceneData& scene, const Accel& accel, const RayArrays& rays,
                              const HitBuffers& hits, const BatchParams& params,
                              const TriangleNormals* normals = nullptr);
 
 /// Whether each ray hits anything in (0, t_max): occluded[i] is 1 or 0. Rays that are not
 /// traced (see intersect_closest_batch) are 0.
-void intersect_any_batch(const Scene& scene, const Accel& accel, const RayArrays& rays,
+void intersect_any_batch(const SceneData& scene, const Accel& accel, const RayArrays& rays,
                          uint8_t* occluded, const BatchParams& params);
 
 /// Whether rays first .. first + count - 1 point within about 25 degrees of each other (every

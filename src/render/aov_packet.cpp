@@ -8,7 +8,7 @@
 namespace raylane::RAYLANE_ISA_NS {
 
 template <int W>
-void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void aov_values(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                 const vmask<W>* active, int count, Aov aov, Vec3<W>* value) {
     constexpr int max_packets = max_block_rays / W;
     HitPacket<W> hits[max_packets];
@@ -66,9 +66,9 @@ void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays
 }
 
 // Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
-#define RAYLANE_INSTANTIATE(W)                                                                    \
-    template void aov_values<W>(const Scene&, const Accel&, const RayPacket<W>*, const vmask<W>*, \
-                                int, Aov, Vec3<W>*);
+#define RAYLANE_INSTANTIATE(W)                                                       \
+    template void aov_values<W>(const SceneData&, const Accel&, const RayPacket<W>*, \
+                                const vmask<W>*, int, Aov, Vec3<W>*);
 RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
 #undef RAYLANE_INSTANTIATE
 

@@ -12,7 +12,7 @@ namespace raylane::RAYLANE_ISA_NS {
 /// One sample's values of a non-colour AOV (normal, depth, BVH cost) for a block of `count`
 /// packets (a tile, at most max_block_rays rays); colour gives black.
 template <int W>
-void aov_values(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void aov_values(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                 const vmask<W>* active, int count, Aov aov, Vec3<W>* value);
 
 }  // namespace raylane::RAYLANE_ISA_NS

@@ -4,24 +4,24 @@
 #include "render/primary_ids.h"
 #include "render/render_packet.h"
 
-#define RAYLANE_DECLARE(ns)                                                   \
-    namespace raylane {                                                       \
-    inline namespace ns {                                                     \
-    RenderResult render_packet_isa(const Scene& scene, const Accel& accel,    \
-                                   const RenderParams& params);               \
-    size_t primary_id_mismatches_isa(const Scene& scene, const Accel& accel); \
-    }                                                                         \
+#define RAYLANE_DECLARE(ns)                                                       \
+    namespace raylane {                                                           \
+    inline namespace ns {                                                         \
+    RenderResult render_packet_isa(const SceneData& scene, const Accel& accel,    \
+                                   const RenderParams& params);                   \
+    size_t primary_id_mismatches_isa(const SceneData& scene, const Accel& accel); \
+    }                                                                             \
     }
 RAYLANE_FOR_EACH_ISA(RAYLANE_DECLARE)
 #undef RAYLANE_DECLARE
 
 namespace raylane {
 
-RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderParams& params) {
+RenderResult render_packet(const SceneData& scene, const Accel& accel, const RenderParams& params) {
     RAYLANE_DISPATCH(render_packet_isa(scene, accel, params));
 }
 
-size_t primary_id_mismatches(const Scene& scene, const Accel& accel) {
+size_t primary_id_mismatches(const SceneData& scene, const Accel& accel) {
     RAYLANE_DISPATCH(primary_id_mismatches_isa(scene, accel));
 }
 

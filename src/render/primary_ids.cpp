@@ -13,7 +13,7 @@
 
 namespace raylane::RAYLANE_ISA_NS {
 
-size_t primary_id_mismatches_isa(const Scene& scene, const Accel& accel) {
+size_t primary_id_mismatches_isa(const SceneData& scene, const Accel& accel) {
     constexpr int W = native_width;
     const Camera& cam = scene.camera;
     const CameraFrame frame = make_camera_frame(cam);

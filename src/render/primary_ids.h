@@ -12,6 +12,6 @@ namespace raylane {
 /// Primary rays through every pixel centre, traced by the scalar path and by the packet path
 /// of the instruction set in use, at its width: the number of pixels whose hit (object and
 /// primitive) differs.
-size_t primary_id_mismatches(const Scene& scene, const Accel& accel);
+size_t primary_id_mismatches(const SceneData& scene, const Accel& accel);
 
 }  // namespace raylane

@@ -145,7 +145,7 @@ void add_values(const TilePackets<W>& tp, const Vec3<W>* value, TileSums<W>& sum
 /// Sample s of the tile's pixels without a wavefront: an AOV, or the colour of a scene without
 /// secondary rays (shade_camera_block).
 template <int W, uint32_t F>
-void sample_values(const Scene& scene, const Accel& accel, const RenderParams& params,
+void sample_values(const SceneData& scene, const Accel& accel, const RenderParams& params,
                    const ShadeParams& shade, const CameraFrame& frame, int spp,
                    const TilePackets<W>& tp, int s, Vec3<W>* value, ShadeCounts& counts) {
     RayPacket<W> rays[TilePackets<W>::max_packets];
@@ -165,7 +165,7 @@ void sample_values(const Scene& scene, const Accel& accel, const RenderParams& p
 /// the camera rays into the queue, a packet's n samples one after the other; then passes until
 /// every path has ended; then each sample's values into the sums.
 template <int W, uint32_t F>
-void wavefront_values(const Scene& scene, const Accel& accel, const RenderParams& params,
+void wavefront_values(const SceneData& scene, const Accel& accel, const RenderParams& params,
                       const ShadeParams& shade, const CameraFrame& frame, int spp,
                       const TilePackets<W>& tp, int s0, int n, TileBuffers& b, TileSums<W>& sums,
                       ShadeCounts& counts) {
@@ -234,7 +234,7 @@ void write_tile(const Tile& tile, const TilePackets<W>& tp, const TileSums<W>& s
 }
 
 template <int W, uint32_t F>
-RenderResult render_packet_features(const Scene& scene, const Accel& accel,
+RenderResult render_packet_features(const SceneData& scene, const Accel& accel,
                                     const RenderParams& params) {
     const auto start = std::chrono::steady_clock::now();
     const Camera& cam = scene.camera;
@@ -299,7 +299,7 @@ constexpr uint32_t group_camera = feature_environment | feature_lens;
 
 /// Calls the kernel compiled for exactly the feature groups in f.
 template <int W>
-RenderResult dispatch(uint32_t f, const Scene& scene, const Accel& accel,
+RenderResult dispatch(uint32_t f, const SceneData& scene, const Accel& accel,
                       const RenderParams& params) {
     constexpr uint32_t T = feature_textures, A = feature_area_lights, S = group_secondary,
                        C = group_camera;
@@ -333,7 +333,7 @@ RenderResult dispatch(uint32_t f, const Scene& scene, const Accel& accel,
 }  // namespace
 
 template <int W>
-RenderResult render_packet_width(const Scene& scene, const Accel& accel,
+RenderResult render_packet_width(const SceneData& scene, const Accel& accel,
                                  const RenderParams& params) {
 #ifdef RAYLANE_SANITIZED
     // sanitizer builds compile two kernels, 16 take too long to build there: the generic one and
@@ -352,13 +352,15 @@ RenderResult render_packet_width(const Scene& scene, const Accel& accel,
 #endif
 }
 
-RenderResult render_packet_isa(const Scene& scene, const Accel& accel, const RenderParams& params) {
+RenderResult render_packet_isa(const SceneData& scene, const Accel& accel,
+                               const RenderParams& params) {
     return render_packet_width<native_width>(scene, accel, params);
 }
 
 // Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
-#define RAYLANE_INSTANTIATE(W) \
-    template RenderResult render_packet_width<W>(const Scene&, const Accel&, const RenderParams&);
+#define RAYLANE_INSTANTIATE(W)                                                   \
+    template RenderResult render_packet_width<W>(const SceneData&, const Accel&, \
+                                                 const RenderParams&);
 RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
 #undef RAYLANE_INSTANTIATE
 

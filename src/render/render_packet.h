@@ -10,7 +10,7 @@ namespace raylane {
 
 /// Renders like render_scalar on the packet path of the instruction set in use (core/isa.h), at
 /// its packet width.
-RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderParams& params);
+RenderResult render_packet(const SceneData& scene, const Accel& accel, const RenderParams& params);
 
 }  // namespace raylane
 
@@ -19,11 +19,12 @@ RenderResult render_packet(const Scene& scene, const Accel& accel, const RenderP
 namespace raylane::RAYLANE_ISA_NS {
 
 /// render_packet in this set, at its packet width.
-RenderResult render_packet_isa(const Scene& scene, const Accel& accel, const RenderParams& params);
+RenderResult render_packet_isa(const SceneData& scene, const Accel& accel,
+                               const RenderParams& params);
 
 /// The same at a chosen width (1, or any width this set runs), for tests and benchmarks.
 template <int W>
-RenderResult render_packet_width(const Scene& scene, const Accel& accel,
+RenderResult render_packet_width(const SceneData& scene, const Accel& accel,
                                  const RenderParams& params);
 
 }  // namespace raylane::RAYLANE_ISA_NS

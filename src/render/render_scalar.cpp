@@ -17,8 +17,8 @@ namespace raylane {
 namespace {
 
 /// One sample's value for the requested output.
-vec3 sample_value(const Scene& scene, const Accel& accel, const Ray& ray, const SampleIndex& index,
-                  const RenderParams& params, ShadeCounts& counts) {
+vec3 sample_value(const SceneData& scene, const Accel& accel, const Ray& ray,
+                  const SampleIndex& index, const RenderParams& params, ShadeCounts& counts) {
     if (params.aov == Aov::color) {
         PathRay path;
         path.ray = ray;
@@ -43,7 +43,7 @@ vec3 sample_value(const Scene& scene, const Accel& accel, const Ray& ray, const 
 
 }  // namespace
 
-RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderParams& params) {
+RenderResult render_scalar(const SceneData& scene, const Accel& accel, const RenderParams& params) {
     const auto start = std::chrono::steady_clock::now();
     const Camera& cam = scene.camera;
     const CameraFrame frame = make_camera_frame(cam);

@@ -9,6 +9,6 @@
 namespace raylane {
 
 /// Renders the scene's camera at its resolution with params.spp samples per pixel.
-RenderResult render_scalar(const Scene& scene, const Accel& accel, const RenderParams& params);
+RenderResult render_scalar(const SceneData& scene, const Accel& accel, const RenderParams& params);
 
 }  // namespace raylane

@@ -37,7 +37,7 @@ constexpr int64_t wavefront_ray_budget = 96;
 /// rays to every light sample, times the glossy rays and their own shadow rays). It depends on
 /// the scene and the sample-count options only, never on threads or timing: the summation order
 /// of a pixel's contributions, and so the image's last bits, depend on it.
-inline int samples_per_wavefront(const Scene& scene, const ShadeParams& params) {
+inline int samples_per_wavefront(const SceneData& scene, const ShadeParams& params) {
     int64_t shadow = 0, glossy = 0;  // 64 bits: any number of lights of 4096 samples
     for (const Light& light : scene.lights)
         if (light.shadows) shadow += light_sample_count(light, params);
@@ -113,7 +113,7 @@ inline bool trace_as_stream(const Accel& accel, bool coherent) {
 /// Traces every ray of `q` to its closest hit: the first pass (camera rays, coherent) as blocks,
 /// later passes (scattered rays) as one stream, or packet by packet (trace_as_stream).
 template <int W>
-void trace_queue(const Scene& scene, const Accel& accel, const PathQueue& q, bool coherent,
+void trace_queue(const SceneData& scene, const Accel& accel, const PathQueue& q, bool coherent,
                  HitArrays& h) {
     h.resize(q.ox.size());
     auto store_hits = [&](int base, int count, const HitPacket<W>* hits) {
@@ -157,7 +157,7 @@ void trace_queue(const Scene& scene, const Accel& accel, const PathQueue& q, boo
 /// after the camera pass (coherent); after later passes (scattered hit points) as one stream or
 /// packet by packet (trace_as_stream).
 template <int W>
-void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q, bool coherent,
+void trace_shadows(const SceneData& scene, const Accel& accel, const ShadowQueue& q, bool coherent,
                    TileBuffers& b) {
     auto add_free = [&](int base, int count, const vmask<W>* active, const vmask<W>* occluded) {
         for (int p = 0; p < count; ++p) {
@@ -205,7 +205,7 @@ void trace_shadows(const Scene& scene, const Accel& accel, const ShadowQueue& q,
 /// their slots in queue order; the queue's order is the same at every W (sort_by_parent), so the
 /// image is the same bits at every W.
 template <int W, uint32_t F>
-void shade_tile_samples(const Scene& scene, const Accel& accel, const ShadeParams& params,
+void shade_tile_samples(const SceneData& scene, const Accel& accel, const ShadeParams& params,
                         int32_t first_sample, uint32_t seed, TileBuffers& b, ShadeCounts& counts) {
     const size_t materials = scene.materials.size();
     if (b.shadows.size() < scene.lights.size()) b.shadows.resize(scene.lights.size());
@@ -304,7 +304,7 @@ constexpr bool has_secondary_rays = (F & group_secondary) != 0;
 /// their packets and are traced as a block. No queue, sort by material, gathers or scatters;
 /// the same arithmetic per ray, in the same order, so the same image.
 template <int W, uint32_t F>
-void shade_camera_block(const Scene& scene, const Accel& accel, const ShadeParams& params,
+void shade_camera_block(const SceneData& scene, const Accel& accel, const ShadeParams& params,
                         int32_t sample, uint32_t seed, const RayPacket<W>* rays,
                         const vmask<W>* active, const vint<W>* slot, const vint<W>* pixel,
                         int count, Vec3<W>* value, ShadeCounts& counts) {

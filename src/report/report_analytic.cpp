@@ -16,7 +16,7 @@ namespace {
 using dvec3 = glm::dvec3;
 
 /// The lit-sphere case: nullopt when the scene is not one.
-std::optional<AnalyticReference> lit_sphere(const Scene& scene, int supersampling) {
+std::optional<AnalyticReference> lit_sphere(const SceneData& scene, int supersampling) {
     if (scene.objects.size() != 1 || scene.environment >= 0) return std::nullopt;
     const Object& obj = scene.objects[0];
     if (obj.kind != ShapeKind::sphere || obj.has_transform ||
@@ -108,7 +108,7 @@ bool is_convex(ShapeKind kind) {
 }
 
 /// The mirror furnace: nullopt when the scene is not one.
-std::optional<AnalyticReference> mirror_furnace(const Scene& scene) {
+std::optional<AnalyticReference> mirror_furnace(const SceneData& scene) {
     if (scene.objects.size() != 1 || scene.environment >= 0) return std::nullopt;
     const Object& obj = scene.objects[0];
     if (!is_convex(obj.kind) || obj.material >= scene.materials.size()) return std::nullopt;
@@ -129,7 +129,7 @@ std::optional<AnalyticReference> mirror_furnace(const Scene& scene) {
 
 }  // namespace
 
-std::optional<AnalyticReference> analytic_reference(const Scene& scene, int supersampling) {
+std::optional<AnalyticReference> analytic_reference(const SceneData& scene, int supersampling) {
     if (auto r = lit_sphere(scene, std::max(1, supersampling))) return r;
     if (auto r = mirror_furnace(scene)) return r;
     return std::nullopt;

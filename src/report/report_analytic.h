@@ -28,6 +28,6 @@ struct AnalyticReference {
     std::string name;
     Film film;
 };
-std::optional<AnalyticReference> analytic_reference(const Scene& scene, int supersampling = 64);
+std::optional<AnalyticReference> analytic_reference(const SceneData& scene, int supersampling = 64);
 
 }  // namespace raylane

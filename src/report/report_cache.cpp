@@ -22,13 +22,13 @@ namespace raylane {
 
 const char* path_name(RenderPath path) { return path == RenderPath::packet ? "packet" : "scalar"; }
 
-RenderResult render_with(RenderPath path, const Scene& scene, const Accel& accel,
+RenderResult render_with(RenderPath path, const SceneData& scene, const Accel& accel,
                          const RenderParams& params) {
     return path == RenderPath::packet ? render_packet(scene, accel, params)
                                       : render_scalar(scene, accel, params);
 }
 
-Reference render_converged_reference(const Scene& scene, const Accel& accel,
+Reference render_converged_reference(const SceneData& scene, const Accel& accel,
                                      const ReferenceParams& params, const ChunkProgress& progress) {
     if (params.spp < 4) throw std::invalid_argument("reference: fewer than 4 samples per pixel");
     // two chunks at least (the halves), each of >= 2 samples (1 sample is the pixel centre)

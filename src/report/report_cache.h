@@ -18,7 +18,7 @@ namespace raylane {
 enum class RenderPath : uint8_t { packet, scalar };
 const char* path_name(RenderPath path);
 /// render_packet or render_scalar.
-RenderResult render_with(RenderPath path, const Scene& scene, const Accel& accel,
+RenderResult render_with(RenderPath path, const SceneData& scene, const Accel& accel,
                          const RenderParams& params);
 
 /// Seeds of converged references start here (chunk k uses reference_seed + k); sweeps use
@@ -48,7 +48,7 @@ using ChunkProgress = std::function<void(int, int)>;
 /// A converged reference: chunks of chunk_spp samples with seeds seed, seed + 1, ...; even
 /// chunks form half A, odd chunks half B; the reference is their sample-weighted mean in double,
 /// Var(ref) = MSE(A, B) / (N (1/n_A + 1/n_B)) (= MSE(A, B) / 4 for equal halves).
-Reference render_converged_reference(const Scene& scene, const Accel& accel,
+Reference render_converged_reference(const SceneData& scene, const Accel& accel,
                                      const ReferenceParams& params,
                                      const ChunkProgress& progress = {});
 

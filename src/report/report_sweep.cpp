@@ -22,25 +22,25 @@ const char* knob_name(SweepKnob knob) {
     return "?";
 }
 
-bool has_area_lights(const Scene& scene) {
+bool has_area_lights(const SceneData& scene) {
     return std::any_of(scene.lights.begin(), scene.lights.end(),
                        [](const Light& l) { return l.is_area(); });
 }
 
-bool has_glossy_materials(const Scene& scene) {
+bool has_glossy_materials(const SceneData& scene) {
     return std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
         return m.model == SpecularModel::glossy_phong && m.k_s > 0.0f;
     });
 }
 
-std::vector<SweepKnob> sweep_knobs(const Scene& scene) {
+std::vector<SweepKnob> sweep_knobs(const SceneData& scene) {
     std::vector<SweepKnob> knobs{SweepKnob::spp};
     if (has_area_lights(scene)) knobs.push_back(SweepKnob::light);
     if (has_glossy_materials(scene)) knobs.push_back(SweepKnob::glossy);
     return knobs;
 }
 
-RenderParams sweep_params(const Scene& scene, SweepKnob knob, int samples, int threads,
+RenderParams sweep_params(const SceneData& scene, SweepKnob knob, int samples, int threads,
                           uint32_t seed) {
     RenderParams p;
     p.spp = std::max(1, scene.camera.spp);
@@ -91,7 +91,7 @@ uint64_t SweepPoint::nan_samples() const {
     return n;
 }
 
-std::vector<SweepPoint> run_sweep(const Scene& scene, const Accel& accel, const Film& reference,
+std::vector<SweepPoint> run_sweep(const SceneData& scene, const Accel& accel, const Film& reference,
                                   const SweepParams& params, const SweepProgress& progress) {
     const size_t nk = params.knobs.size(), np = params.paths.size(), ns = params.samples.size();
     const int repeats = std::max(1, params.repeats);

@@ -22,14 +22,14 @@ namespace raylane {
 enum class SweepKnob : uint8_t { spp, light, glossy };
 const char* knob_name(SweepKnob knob);
 
-bool has_area_lights(const Scene& scene);
-bool has_glossy_materials(const Scene& scene);
+bool has_area_lights(const SceneData& scene);
+bool has_glossy_materials(const SceneData& scene);
 /// spp always; light when the scene has area lights; glossy when it has glossy Phong materials.
-std::vector<SweepKnob> sweep_knobs(const Scene& scene);
+std::vector<SweepKnob> sweep_knobs(const SceneData& scene);
 
 /// Render parameters of one point: the knob set to `samples`; spp stays the camera's for the
 /// light and glossy knobs (so their error flattens at that spp's anti-aliasing error).
-RenderParams sweep_params(const Scene& scene, SweepKnob knob, int samples, int threads,
+RenderParams sweep_params(const SceneData& scene, SweepKnob knob, int samples, int threads,
                           uint32_t seed);
 
 struct SweepParams {
@@ -68,7 +68,7 @@ struct SweepLabel {
 using SweepProgress = std::function<void(int, int, const SweepPoint&)>;
 
 /// Runs the sweep against `reference`; points are ordered by knob, then path, then samples.
-std::vector<SweepPoint> run_sweep(const Scene& scene, const Accel& accel, const Film& reference,
+std::vector<SweepPoint> run_sweep(const SceneData& scene, const Accel& accel, const Film& reference,
                                   const SweepParams& params, const SweepProgress& progress = {});
 
 /// Times and RMSE of the points of one (path, knob), in sample order.

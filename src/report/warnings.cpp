@@ -13,7 +13,7 @@ namespace {
 /// Camera rays on a grid of this many columns and rows look for an object.
 constexpr int probe_columns = 32, probe_rows = 18;
 
-bool camera_sees_an_object(const Scene& scene, const Accel& accel) {
+bool camera_sees_an_object(const SceneData& scene, const Accel& accel) {
     const CameraFrame frame = make_camera_frame(scene.camera);
     for (int j = 0; j < probe_rows; ++j) {
         for (int i = 0; i < probe_columns; ++i) {
@@ -27,7 +27,7 @@ bool camera_sees_an_object(const Scene& scene, const Accel& accel) {
 
 }  // namespace
 
-std::vector<std::string> scene_warnings(const Scene& scene, const Accel& accel) {
+std::vector<std::string> scene_warnings(const SceneData& scene, const Accel& accel) {
     std::vector<std::string> w;
     if (scene.lights.empty())
         w.push_back(

@@ -14,7 +14,7 @@ namespace raylane {
 
 /// Before a render: a scene without lights; a camera whose rays (a 32x18 grid over the frame,
 /// through the pixel centres' lens centre) hit no object.
-std::vector<std::string> scene_warnings(const Scene& scene, const Accel& accel);
+std::vector<std::string> scene_warnings(const SceneData& scene, const Accel& accel);
 
 /// After a render: every pixel black; every sample NaN. `samples` is pixels times spp.
 std::vector<std::string> render_warnings(const Film& film, const RenderStats& stats,

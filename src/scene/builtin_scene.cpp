@@ -25,7 +25,7 @@ Material make_phong(std::string name, vec3 c_d, float k_d, float k_s, float expo
 /// Normalised in double, as the loader normalises directions.
 vec3 unit(glm::dvec3 v) { return vec3(v / glm::length(v)); }
 
-void add_object(Scene& scene, ShapeKind kind, uint32_t shape, uint32_t material,
+void add_object(SceneData& scene, ShapeKind kind, uint32_t shape, uint32_t material,
                 const Transform& t = {}) {
     Object o;
     o.kind = kind;
@@ -37,8 +37,8 @@ void add_object(Scene& scene, ShapeKind kind, uint32_t shape, uint32_t material,
 
 }  // namespace
 
-Scene make_builtin_scene() {
-    Scene scene;
+SceneData make_builtin_scene() {
+    SceneData scene;
     scene.source = "<built-in>";
 
     scene.camera.position = vec3(0.0f, 2.5f, -7.0f);
@@ -104,9 +104,9 @@ Scene make_builtin_scene() {
     return scene;
 }
 
-size_t count_triangles(const Scene& scene) {
+size_t count_triangles(const SceneData& scene) {
     size_t n = scene.triangles.size();
-    for (const Mesh& mesh : scene.meshes) n += mesh.triangle_count();
+    for (const MeshData& mesh : scene.meshes) n += mesh.triangle_count();
     return n;
 }
 

@@ -3,7 +3,7 @@
 
 namespace raylane {
 
-uint32_t scene_features(const Scene& scene) {
+uint32_t scene_features(const SceneData& scene) {
     uint32_t f = 0;
     for (const Material& m : scene.materials) {
         if (m.texture >= 0 || m.normal_map >= 0) f |= feature_textures;

@@ -32,7 +32,7 @@ enum Feature : uint32_t {
 inline constexpr uint32_t kernel_features_all = (1u << 7) - 1u;
 
 /// The features `scene` uses.
-uint32_t scene_features(const Scene& scene);
+uint32_t scene_features(const SceneData& scene);
 
 /// Space-separated names of the features in `features` ("textures area-lights ...").
 std::string feature_names(uint32_t features);

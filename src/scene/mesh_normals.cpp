@@ -5,7 +5,7 @@
 
 namespace raylane {
 
-void compute_smooth_normals(Mesh& mesh) {
+void compute_smooth_normals(MeshData& mesh) {
     std::vector<glm::dvec3> sum(mesh.positions.size(), glm::dvec3(0.0));
     for (const uvec3& t : mesh.tris) {
         const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
@@ -22,12 +22,12 @@ void compute_smooth_normals(Mesh& mesh) {
     mesh.normal_tris = mesh.tris;
 }
 
-void drop_normals(Mesh& mesh) {
+void drop_normals(MeshData& mesh) {
     mesh.normals.clear();
     mesh.normal_tris.clear();
 }
 
-vec3 triangle_dpdu(const Mesh& mesh, uint32_t prim) {
+vec3 triangle_dpdu(const MeshData& mesh, uint32_t prim) {
     if (mesh.uv_tris.empty()) return vec3(0.0f);
     const uvec3 t = mesh.tris[prim], ut = mesh.uv_tris[prim];
     const vec3 e1 = mesh.positions[t.y] - mesh.positions[t.x];

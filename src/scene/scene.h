@@ -75,7 +75,7 @@ struct Material {
     vec3 c_d{0.8f};
     float k_d = 1.0f;
     float k_a = 0.0f;
-    int32_t texture = -1;           ///< Scene::textures index replacing c_d; -1 = none
+    int32_t texture = -1;           ///< SceneData::textures index replacing c_d; -1 = none
     bool texture_specular = false;  ///< the texture also replaces c_s (the report's textures)
     // specular lobe
     SpecularModel model = SpecularModel::phong;
@@ -93,7 +93,8 @@ struct Material {
     float ior = 1.5f;
     vec3 filter{1.0f};  ///< Beer's law: radiance *= filter^distance travelled inside
     // maps and emission
-    int32_t env_map = -1;  ///< Scene::textures index: reflection map for this object's mirror rays
+    int32_t env_map =
+        -1;  ///< SceneData::textures index: reflection map for this object's mirror rays
     int32_t normal_map = -1;
     NormalMapMode normal_map_mode = NormalMapMode::tangent;
     vec3 emission{0.0f};  ///< emitters (visible area lights) show this radiance and nothing else
@@ -160,10 +161,11 @@ struct Triangle {
     vec3 p0{0.0f}, p1{1.0f, 0.0f, 0.0f}, p2{0.0f, 1.0f, 0.0f};
 };
 
-/// A triangle mesh in world space (object transforms are applied at load).
+/// A triangle mesh in world space (object transforms are applied at load; the public
+/// raylane::Mesh holds one with its BVHs).
 /// Positions, normals and uvs have their own index triples, as in OBJ; normal_tris and uv_tris
 /// are empty when the mesh has no normals or uvs, else they have one entry per triangle.
-struct Mesh {
+struct MeshData {
     std::string name;
     std::vector<vec3> positions;
     std::vector<vec3> normals;
@@ -188,8 +190,8 @@ enum class ShapeKind : uint8_t { sphere, box, cylinder, plane, triangle, mesh };
 /// (the ray is moved there by object_from_world); meshes are already in world space.
 struct Object {
     ShapeKind kind = ShapeKind::sphere;
-    uint32_t shape = 0;         ///< index into the Scene array of that kind
-    uint32_t material = 0;      ///< index into Scene::materials
+    uint32_t shape = 0;         ///< index into the SceneData array of that kind
+    uint32_t material = 0;      ///< index into SceneData::materials
     bool casts_shadows = true;  ///< false for the visible boxes of area lights
     bool has_transform = false;
     mat4 world_from_object{1.0f};
@@ -222,7 +224,7 @@ inline constexpr int max_path_depth = 64;
 /// never reach it.
 inline constexpr int glass_fork_depth = 10;
 
-/// Scene-wide shading switches, including the report's analysis images (Figures 4 and 6).
+/// SceneData-wide shading switches, including the report's analysis images (Figures 4 and 6).
 struct ShadingOptions {
     BrdfScaling brdf = BrdfScaling::physical;
     int max_reflection_depth = 5;     ///< mirror rays allowed along a path
@@ -235,7 +237,9 @@ struct ShadingOptions {
     vec3 reflected_color{1.0f, 0.0f, 1.0f};
 };
 
-struct Scene {
+/// Everything a scene file describes, in world space: the camera, the objects and their shapes,
+/// materials, lights, textures and meshes (the public raylane::Scene holds one with its BVHs).
+struct SceneData {
     std::string source;  ///< file the scene came from ("<built-in>" otherwise)
     /// The world point stored as (0, 0, 0): every position in the scene is relative to it
     /// (load_scene picks it at the camera's position, rounded; numerics.md section 17).
@@ -243,7 +247,7 @@ struct Scene {
     Camera camera;
     CameraPath camera_path;  ///< the camera's animation (scene/camera_path.h); none for a still
     vec3 background{0.0f};
-    int32_t environment = -1;  ///< Scene::textures index (latitude-longitude); -1 = background
+    int32_t environment = -1;  ///< SceneData::textures index (latitude-longitude); -1 = background
     ShadingOptions shading;
     Tonemap tonemap = Tonemap::srgb;
     std::vector<Texture> textures;
@@ -255,16 +259,16 @@ struct Scene {
     std::vector<Cylinder> cylinders;
     std::vector<Plane> planes;
     std::vector<Triangle> triangles;
-    std::vector<Mesh> meshes;
+    std::vector<MeshData> meshes;
     /// What the loader let pass but a user should hear (a missing material library, a material
     /// no library defines, MTL keywords Raylane does not use): one line each.
     std::vector<std::string> warnings;
 };
 
 /// The scene that needs no model file: sphere, box, cylinder, plane and a triangle, two lights.
-Scene make_builtin_scene();
+SceneData make_builtin_scene();
 
 /// Number of triangles over all meshes and single triangles.
-size_t count_triangles(const Scene& scene);
+size_t count_triangles(const SceneData& scene);
 
 }  // namespace raylane

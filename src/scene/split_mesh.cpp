@@ -28,8 +28,8 @@ struct Renumber {
 };
 
 /// The triangles of material m as a mesh of their own.
-Mesh part_of(const Mesh& mesh, uint32_t m) {
-    Mesh part;
+MeshData part_of(const MeshData& mesh, uint32_t m) {
+    MeshData part;
     part.name = mesh.name + ":" + mesh.material_names[m];
     part.normal_to_world = mesh.normal_to_world;
     Renumber<vec3> positions{mesh.positions, part.positions};
@@ -46,7 +46,7 @@ Mesh part_of(const Mesh& mesh, uint32_t m) {
 
 }  // namespace
 
-std::vector<MeshPart> split_by_material(Mesh mesh) {
+std::vector<MeshPart> split_by_material(MeshData mesh) {
     std::vector<MeshPart> parts;
     if (mesh.material_names.empty() || mesh.tri_material.size() != mesh.tris.size()) {
         mesh.material_names.clear(), mesh.tri_material.clear(), mesh.material_libraries.clear();

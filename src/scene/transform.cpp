@@ -71,7 +71,7 @@ void set_transform(Object& object, const Transform& t) {
     object.object_from_world = mat4(make_object_from_world(t));
 }
 
-Aabb mesh_bounds(const Mesh& mesh) {
+Aabb mesh_bounds(const MeshData& mesh) {
     Aabb box;
     for (vec3 p : mesh.positions) box.grow(p);
     return box;
@@ -85,7 +85,7 @@ glm::dmat4 make_fit(const Aabb& bounds, double scale, glm::dvec3 offset) {
     return m;
 }
 
-void bake_transform(Mesh& mesh, const glm::dmat4& world_from_object) {
+void bake_transform(MeshData& mesh, const glm::dmat4& world_from_object) {
     glm::dmat3 linear(world_from_object);
     glm::dvec3 shift(world_from_object[3]);
     for (vec3& p : mesh.positions) p = vec3(linear * glm::dvec3(p) + shift);

@@ -1,5 +1,5 @@
 // scene: object transforms - world_from_object from translate / rotate / scale, the mesh "fit"
-// normalisation, and baking a transform into a Mesh. Used by io/load_scene_objects.cpp and
+// normalisation, and baking a transform into a MeshData. Used by io/load_scene_objects.cpp and
 // builtin_scene.cpp.
 #pragma once
 
@@ -39,7 +39,7 @@ bool is_identity(const Transform& t);
 void set_transform(Object& object, const Transform& t);
 
 /// Bounding box of the mesh's positions (empty for a mesh without positions).
-Aabb mesh_bounds(const Mesh& mesh);
+Aabb mesh_bounds(const MeshData& mesh);
 
 /// The scene format's "fit": moves the bottom centre of `bounds` (centre in x and z, lowest
 /// point in y) to the origin, scales uniformly by `scale`, then translates by `offset`.
@@ -49,6 +49,6 @@ glm::dmat4 make_fit(const Aabb& bounds, double scale, glm::dvec3 offset);
 /// inverse transpose of its linear part, renormalised (a zero normal stays zero). When the
 /// linear part has a negative determinant (a mirror) each triangle's winding is reversed, in
 /// tris, normal_tris and uv_tris alike, so the winding keeps facing the way the normals do.
-void bake_transform(Mesh& mesh, const glm::dmat4& world_from_object);
+void bake_transform(MeshData& mesh, const glm::dmat4& world_from_object);
 
 }  // namespace raylane

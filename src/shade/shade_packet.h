@@ -48,7 +48,7 @@ struct ShadingPointPacket {
 };
 
 template <int W, uint32_t F>
-[[gnu::always_inline]] inline ShadingPointPacket<W> shading_point(const Scene& scene,
+[[gnu::always_inline]] inline ShadingPointPacket<W> shading_point(const SceneData& scene,
                                                                   const Material& m,
                                                                   const RayPacket<W>& rays,
                                                                   const HitPacket<W>& hits,
@@ -69,7 +69,7 @@ template <int W, uint32_t F>
             for_each_active(active, [&](int i) {
                 const Object& obj = scene.objects[size_t(get(hits.object, i))];
                 if (obj.kind != ShapeKind::mesh) return;
-                const Mesh& mesh = scene.meshes[obj.shape];
+                const MeshData& mesh = scene.meshes[obj.shape];
                 const vec3 d = triangle_dpdu(mesh, uint32_t(get(hits.prim, i)));
                 set(dpdu.x, i, d.x), set(dpdu.y, i, d.y), set(dpdu.z, i, d.z);
                 to_world = mesh.normal_to_world;  // one mesh per material in practice
@@ -116,7 +116,7 @@ inline vfloat<W> random_at(const vint<W>& pixel, const vint<W>& sample, uint32_t
 /// lights without shadows go to the slots, shadow rays to the light's queue, glossy rays to the
 /// next pass.
 template <int W, uint32_t F, class Target>
-[[gnu::always_inline]] inline void local_term(const Scene& scene, const Material& m,
+[[gnu::always_inline]] inline void local_term(const SceneData& scene, const Material& m,
                                               const ShadingPointPacket<W>& p,
                                               const ShadeInput<W>& in, const Vec3<W>& local_weight,
                                               const ShadeParams& params, uint32_t seed,
@@ -194,7 +194,7 @@ template <int W, uint32_t F, class Target>
 /// the local term's weight: (1 - R) times the path's weight on the mirror lanes (0 when the
 /// local term is off), the path's weight on the others. shade_hits adds k_a_after c_d.
 template <int W, class Target>
-[[gnu::always_inline]] inline Vec3<W> mirror_term(const Scene& scene, const Material& m,
+[[gnu::always_inline]] inline Vec3<W> mirror_term(const SceneData& scene, const Material& m,
                                                   const ShadingPointPacket<W>& p,
                                                   const ShadeInput<W>& in, const Target& out,
                                                   vmask<W> mirror) {
@@ -227,7 +227,7 @@ template <int W, class Target>
 /// reflection reflects everything. The `alive` lanes' rays go to the next pass, those that
 /// travel inside the glass to their own queue.
 template <int W, class Target>
-[[gnu::always_inline]] inline void glass_term(const Scene& scene, const Material& m,
+[[gnu::always_inline]] inline void glass_term(const SceneData& scene, const Material& m,
                                               const ShadingPointPacket<W>& p,
                                               const ShadeInput<W>& in, const Target& out,
                                               vmask<W> alive) {
@@ -300,7 +300,7 @@ template <int W, class Target>
 /// miss_radiance of shade_scalar.h for W rays: each lane's map (`env_map`, else the scene's
 /// environment), else the background.
 template <int W>
-inline Vec3<W> miss_radiance(const Scene& scene, const vint<W>& env_map, const Vec3<W>& dir,
+inline Vec3<W> miss_radiance(const SceneData& scene, const vint<W>& env_map, const Vec3<W>& dir,
                              vmask<W> active) {
     const vint<W> map = select(lt(env_map, vint<W>(0)), vint<W>(scene.environment), env_map);
     Vec3<W> out = broadcast_vec3<W>(scene.background);
@@ -320,7 +320,7 @@ inline Vec3<W> miss_radiance(const Scene& scene, const vint<W>& env_map, const V
 /// queues shadow rays (per light) and secondary rays. Target: ShadeTarget (queues), or
 /// PacketTarget<W> for kernels without secondary rays.
 template <int W, uint32_t F, class Target>
-void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params, uint32_t seed,
+void shade_hits(const SceneData& scene, const Material& m, const ShadeParams& params, uint32_t seed,
                 const ShadeInput<W>& in, vmask<W> active, const Target& out) {
     using namespace shade_detail;
     const ShadingOptions& o = scene.shading;
@@ -355,9 +355,9 @@ void shade_hits(const Scene& scene, const Material& m, const ShadeParams& params
 
 /// Shades k <= W hits of material `m`: queue entries idx[0..k) of `q` with hits `h`.
 template <int W, uint32_t F>
-void shade_batch(const Scene& scene, const Material& m, const ShadeParams& params, uint32_t seed,
-                 const SlotMap& slots, const PathQueue& q, const HitArrays& h, const int32_t* idx,
-                 int k, const ShadeTarget& out) {
+void shade_batch(const SceneData& scene, const Material& m, const ShadeParams& params,
+                 uint32_t seed, const SlotMap& slots, const PathQueue& q, const HitArrays& h,
+                 const int32_t* idx, int k, const ShadeTarget& out) {
     const vmask<W> active = mask_from_bits<W>(k >= 32 ? ~0u : (1u << k) - 1u);
     shade_hits<W, F>(scene, m, params, seed, gather_shade_input<W>(q, h, slots, idx, active),
                      active, out);

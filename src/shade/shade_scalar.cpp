@@ -28,7 +28,8 @@ struct ShadingPoint {
     float reach = 0.0f;    ///< ray_reach of the ray that found the point (offset_ray_origin)
 };
 
-ShadingPoint shading_point(const Scene& scene, const Material& m, const Ray& ray, const Hit& hit) {
+ShadingPoint shading_point(const SceneData& scene, const Material& m, const Ray& ray,
+                           const Hit& hit) {
     const SurfacePoint sp = surface_at(scene, ray, hit);
     ShadingPoint p;
     p.position = sp.position;
@@ -37,7 +38,7 @@ ShadingPoint shading_point(const Scene& scene, const Material& m, const Ray& ray
     vec3 ns = sp.shading_normal;
     const Object& object = scene.objects[hit.object];
     if (m.normal_map >= 0 && object.kind == ShapeKind::mesh) {
-        const Mesh& mesh = scene.meshes[object.shape];
+        const MeshData& mesh = scene.meshes[object.shape];
         const vec3 texel = texture_lookup(scene.textures[size_t(m.normal_map)], sp.uv);
         ns = normal_from_map(m.normal_map_mode, texel, ns, triangle_dpdu(mesh, hit.prim),
                              mesh.normal_to_world);
@@ -58,9 +59,9 @@ float random_at(const SampleIndex& index, uint32_t key, uint32_t purpose, uint32
 }
 
 /// k_a c_d + lights (diffuse + specular lobe, shadow rays) + glossy rays.
-vec3 local_term(const Scene& scene, const Accel& accel, const Material& m, const ShadingPoint& p,
-                const PathRay& path, const SampleIndex& index, const ShadeParams& params,
-                ShadeCounts& counts) {
+vec3 local_term(const SceneData& scene, const Accel& accel, const Material& m,
+                const ShadingPoint& p, const PathRay& path, const SampleIndex& index,
+                const ShadeParams& params, ShadeCounts& counts) {
     const BrdfScaling brdf = scene.shading.brdf;
     const vec3 wo = -p.view;
     const vec3 origin = offset_ray_origin(p.position, p.ng, p.reach);
@@ -112,9 +113,9 @@ vec3 local_term(const Scene& scene, const Accel& accel, const Material& m, const
 }
 
 /// (1 - R) local + R c_s L_mirror + k_a_after c_d, R = Schlick(r0, cos) or r0.
-vec3 mirror_term(const Scene& scene, const Accel& accel, const Material& m, const ShadingPoint& p,
-                 const vec3& local, const PathRay& path, const SampleIndex& index,
-                 const ShadeParams& params, ShadeCounts& counts) {
+vec3 mirror_term(const SceneData& scene, const Accel& accel, const Material& m,
+                 const ShadingPoint& p, const vec3& local, const PathRay& path,
+                 const SampleIndex& index, const ShadeParams& params, ShadeCounts& counts) {
     const ShadingOptions& o = scene.shading;
     const float cos_theta = -glm::dot(p.view, p.ns);
     const float r = m.fresnel && o.fresnel ? schlick(m.reflection, cos_theta) : m.reflection;
@@ -139,9 +140,9 @@ vec3 mirror_term(const Scene& scene, const Accel& accel, const Material& m, cons
 
 /// R L_reflected + (1 - R) L_refracted with exact Fresnel (or R = 0 when Fresnel is off) and
 /// Beer's law on the segment inside; total internal reflection reflects everything.
-vec3 glass_term(const Scene& scene, const Accel& accel, const Material& m, const ShadingPoint& p,
-                const PathRay& path, const SampleIndex& index, const ShadeParams& params,
-                ShadeCounts& counts) {
+vec3 glass_term(const SceneData& scene, const Accel& accel, const Material& m,
+                const ShadingPoint& p, const PathRay& path, const SampleIndex& index,
+                const ShadeParams& params, ShadeCounts& counts) {
     const ShadingOptions& o = scene.shading;
     const float eta = p.entering ? m.ior : 1.0f / m.ior;
     const float cos_i = -glm::dot(p.view, p.ns);
@@ -188,13 +189,13 @@ vec3 glass_term(const Scene& scene, const Accel& accel, const Material& m, const
 
 }  // namespace
 
-vec3 miss_radiance(const Scene& scene, int32_t env_map, vec3 dir) {
+vec3 miss_radiance(const SceneData& scene, int32_t env_map, vec3 dir) {
     const int32_t map = env_map >= 0 ? env_map : scene.environment;
     if (map >= 0) return environment_lookup(scene.textures[size_t(map)], dir);
     return scene.background;
 }
 
-PathResult trace_path(const Scene& scene, const Accel& accel, const PathRay& path,
+PathResult trace_path(const SceneData& scene, const Accel& accel, const PathRay& path,
                       const SampleIndex& index, const ShadeParams& params, ShadeCounts& counts) {
     const Hit hit = intersect_closest(scene, accel, path.ray);
     if (!hit.hit()) return {miss_radiance(scene, path.env_map, path.ray.dir), infinity};

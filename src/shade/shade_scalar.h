@@ -54,12 +54,12 @@ struct PathResult {
     float t = infinity;
 };
 
-PathResult trace_path(const Scene& scene, const Accel& accel, const PathRay& path,
+PathResult trace_path(const SceneData& scene, const Accel& accel, const PathRay& path,
                       const SampleIndex& index, const ShadeParams& params, ShadeCounts& counts);
 
 /// Radiance of a ray that leaves the scene: the map `env_map` (or the scene's environment) in
 /// the ray's direction, else the background colour.
-vec3 miss_radiance(const Scene& scene, int32_t env_map, vec3 dir);
+vec3 miss_radiance(const SceneData& scene, int32_t env_map, vec3 dir);
 
 /// The number of samples area light `light` takes per shading point.
 inline int light_sample_count(const Light& light, const ShadeParams& params) {

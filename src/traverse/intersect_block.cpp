@@ -257,7 +257,7 @@ bool block_may_hit_plane(const BlockBounds& b, const Object& object, const Plane
 }
 
 /// Whether the unbounded object may be hit by a ray of the block (planes: block_may_hit_plane).
-bool block_may_hit_unbounded(const Scene& scene, const BlockBounds& b, const Object& object) {
+bool block_may_hit_unbounded(const SceneData& scene, const BlockBounds& b, const Object& object) {
     return object.kind != ShapeKind::plane ||
            block_may_hit_plane(b, object, scene.planes[object.shape]);
 }
@@ -375,7 +375,7 @@ void traverse_block_wide(const WideBvh& wide, const BlockBounds& bounds, int cou
 }  // namespace
 
 template <int W>
-void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void intersect_closest_block(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                              const vmask<W>* active, HitPacket<W>* hits, int count) {
     for (int p = 0; p < count; ++p) hits[p] = HitPacket<W>{};
     BlockBounds bounds = make_block_bounds(rays, active, count);
@@ -464,7 +464,7 @@ void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPa
 }
 
 template <int W>
-void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void intersect_any_block(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                          const vmask<W>* active, vmask<W>* occluded, int count) {
     for (int p = 0; p < count; ++p) occluded[p] = mask_and(active[p], mask_not(active[p]));
     // the bounds of the active rays, also for the BVH (those the unbounded objects occlude are
@@ -542,10 +542,10 @@ void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket
 }
 
 // Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
-#define RAYLANE_INSTANTIATE(W)                                                                \
-    template void intersect_closest_block<W>(const Scene&, const Accel&, const RayPacket<W>*, \
-                                             const vmask<W>*, HitPacket<W>*, int);            \
-    template void intersect_any_block<W>(const Scene&, const Accel&, const RayPacket<W>*,     \
+#define RAYLANE_INSTANTIATE(W)                                                                    \
+    template void intersect_closest_block<W>(const SceneData&, const Accel&, const RayPacket<W>*, \
+                                             const vmask<W>*, HitPacket<W>*, int);                \
+    template void intersect_any_block<W>(const SceneData&, const Accel&, const RayPacket<W>*,     \
                                          const vmask<W>*, vmask<W>*, int);
 RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
 #undef RAYLANE_INSTANTIATE

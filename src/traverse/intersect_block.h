@@ -19,12 +19,12 @@ inline constexpr int max_block_rays = 256;
 /// Tracing", IEEE RT 2008; interval culling: Wald, Boulos, Shirley, "Ray Tracing Deformable
 /// Scenes Using Dynamic Bounding Volume Hierarchies", ACM TOG 2007). count * W <= max_block_rays.
 template <int W>
-void intersect_closest_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void intersect_closest_block(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                              const vmask<W>* active, HitPacket<W>* hits, int count);
 
 /// intersect_any for a block of packets; occluded[p] receives the lanes of packet p that hit.
 template <int W>
-void intersect_any_block(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void intersect_any_block(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                          const vmask<W>* active, vmask<W>* occluded, int count);
 
 }  // namespace raylane::RAYLANE_ISA_NS

@@ -24,7 +24,7 @@ namespace {
 
 /// Analytic shapes: the packet twins of the shape tests; single triangles lane by lane.
 template <int W>
-vfloat<W> intersect_analytic(const Scene& scene, const Object& object, const RayPacket<W>& rays,
+vfloat<W> intersect_analytic(const SceneData& scene, const Object& object, const RayPacket<W>& rays,
                              vmask<W> active) {
     switch (object.kind) {
         case ShapeKind::sphere:
@@ -182,7 +182,7 @@ vmask<W> intersect_mesh_any(const MeshAccel& mesh, const RayPacket<W>& rays, vma
 }
 
 template <int W>
-void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t object_index,
+void intersect_object_closest(const SceneData& scene, const Accel& accel, uint32_t object_index,
                               const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
                               vint<W>* nodes_visited, WideRef start = {}) {
     const Object& object = scene.objects[object_index];
@@ -200,7 +200,7 @@ void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t o
 }
 
 template <int W>
-vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t object_index,
+vmask<W> intersect_object_any(const SceneData& scene, const Accel& accel, uint32_t object_index,
                               const RayPacket<W>& rays, vmask<W> active, WideRef start = {}) {
     const Object& object = scene.objects[object_index];
     if (!object.casts_shadows) return vmask<W>(false);
@@ -213,7 +213,7 @@ vmask<W> intersect_object_any(const Scene& scene, const Accel& accel, uint32_t o
 }  // namespace
 
 template <int W>
-void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint32_t object,
+void intersect_object_closest_from(const SceneData& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
                                    WideRef start) {
     intersect_object_closest(scene, accel, object, rays, active, hit,
@@ -221,13 +221,13 @@ void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint3
 }
 
 template <int W>
-vmask<W> intersect_object_any_from(const Scene& scene, const Accel& accel, uint32_t object,
+vmask<W> intersect_object_any_from(const SceneData& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, WideRef start) {
     return intersect_object_any(scene, accel, object, rays, active, start);
 }
 
 template <int W>
-HitPacket<W> intersect_closest(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
+HitPacket<W> intersect_closest(const SceneData& scene, const Accel& accel, const RayPacket<W>& rays,
                                vmask<W> active, vint<W>* nodes_visited) {
     HitPacket<W> hit;
     if (none(active)) return hit;
@@ -273,7 +273,7 @@ HitPacket<W> intersect_closest(const Scene& scene, const Accel& accel, const Ray
 }
 
 template <int W>
-vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
+vmask<W> intersect_any(const SceneData& scene, const Accel& accel, const RayPacket<W>& rays,
                        vmask<W> active) {
     vmask<W> found = mask_and(active, mask_not(active));
     for (uint32_t object : accel.unbounded) {
@@ -317,20 +317,21 @@ vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W
 }
 
 // Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
-#define RAYLANE_INSTANTIATE(W)                                                                     \
-    template HitPacket<W> intersect_closest<W>(const Scene&, const Accel&, const RayPacket<W>&,    \
-                                               vmask<W>, vint<W>*);                                \
-    template vmask<W> intersect_any<W>(const Scene&, const Accel&, const RayPacket<W>&, vmask<W>); \
-    template void intersect_object_closest_from<W>(const Scene&, const Accel&, uint32_t,           \
-                                                   const RayPacket<W>&, vmask<W>, HitPacket<W>&,   \
-                                                   WideRef);                                       \
-    template vmask<W> intersect_object_any_from<W>(const Scene&, const Accel&, uint32_t,           \
+#define RAYLANE_INSTANTIATE(W)                                                                   \
+    template HitPacket<W> intersect_closest<W>(const SceneData&, const Accel&,                   \
+                                               const RayPacket<W>&, vmask<W>, vint<W>*);         \
+    template vmask<W> intersect_any<W>(const SceneData&, const Accel&, const RayPacket<W>&,      \
+                                       vmask<W>);                                                \
+    template void intersect_object_closest_from<W>(const SceneData&, const Accel&, uint32_t,     \
+                                                   const RayPacket<W>&, vmask<W>, HitPacket<W>&, \
+                                                   WideRef);                                     \
+    template vmask<W> intersect_object_any_from<W>(const SceneData&, const Accel&, uint32_t,     \
                                                    const RayPacket<W>&, vmask<W>, WideRef);
 RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
 #undef RAYLANE_INSTANTIATE
 #if defined(__AVX2__)  // W = 1 is among the sse4.2 set's widths; the others trace at W = 1 only
                        // the bvh-cost image's single rays (render/aov_packet.cpp)
-template HitPacket<1> intersect_closest<1>(const Scene&, const Accel&, const RayPacket<1>&,
+template HitPacket<1> intersect_closest<1>(const SceneData&, const Accel&, const RayPacket<1>&,
                                            vmask<1>, vint<1>*);
 #endif
 

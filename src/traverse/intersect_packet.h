@@ -29,12 +29,12 @@ inline RayPacket<W> to_object_space(const Object& object, const RayPacket<W>& ra
 /// (smaller t, then object, then primitive). Inactive lanes come back as misses.
 /// `nodes_visited`, when given, counts per lane the BVH nodes tested while the lane was active.
 template <int W>
-HitPacket<W> intersect_closest(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
+HitPacket<W> intersect_closest(const SceneData& scene, const Accel& accel, const RayPacket<W>& rays,
                                vmask<W> active, vint<W>* nodes_visited = nullptr);
 
 /// The active lanes that hit anything in (t_min, t_max) (shadow rays).
 template <int W>
-vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W>& rays,
+vmask<W> intersect_any(const SceneData& scene, const Accel& accel, const RayPacket<W>& rays,
                        vmask<W> active);
 
 /// One object's part of intersect_closest: improves `hit` for the active lanes with the same
@@ -42,14 +42,14 @@ vmask<W> intersect_any(const Scene& scene, const Accel& accel, const RayPacket<W
 /// slot's box (the default: the root node): the caller knows the lanes reach it, or reached it
 /// under a larger limit, which only costs tests. For the block and stream traversals.
 template <int W>
-void intersect_object_closest_from(const Scene& scene, const Accel& accel, uint32_t object,
+void intersect_object_closest_from(const SceneData& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, HitPacket<W>& hit,
                                    WideRef start = {});
 
 /// One object's part of intersect_any: the active lanes it occludes (none when it casts no
 /// shadows). A mesh from slot `start` of its wide tree, as intersect_object_closest_from.
 template <int W>
-vmask<W> intersect_object_any_from(const Scene& scene, const Accel& accel, uint32_t object,
+vmask<W> intersect_object_any_from(const SceneData& scene, const Accel& accel, uint32_t object,
                                    const RayPacket<W>& rays, vmask<W> active, WideRef start = {});
 
 }  // namespace raylane::RAYLANE_ISA_NS

@@ -32,7 +32,7 @@ bool better(float t, uint32_t object, uint32_t prim, const Hit& hit) {
     return prim < hit.prim;
 }
 
-float intersect_analytic(const Scene& scene, const Object& object, const Ray& ray_obj) {
+float intersect_analytic(const SceneData& scene, const Object& object, const Ray& ray_obj) {
     switch (object.kind) {
         case ShapeKind::sphere:
             return intersect_sphere(scene.spheres[object.shape], ray_obj);
@@ -128,7 +128,7 @@ bool intersect_mesh_any(const MeshAccel& mesh, const Ray& ray, TraversalStats& s
     return traverse<false>(mesh.bvh, ray, limit, leaf, stats);
 }
 
-void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t object_index,
+void intersect_object_closest(const SceneData& scene, const Accel& accel, uint32_t object_index,
                               const Ray& ray, Hit& hit, TraversalStats& stats) {
     const Object& object = scene.objects[object_index];
     if (object.kind == ShapeKind::mesh) {
@@ -142,7 +142,7 @@ void intersect_object_closest(const Scene& scene, const Accel& accel, uint32_t o
     if (t < r.t_max && better(t, object_index, 0, hit)) hit = {t, 0, object_index, vec2(0.0f)};
 }
 
-bool intersect_object_any(const Scene& scene, const Accel& accel, uint32_t object_index,
+bool intersect_object_any(const SceneData& scene, const Accel& accel, uint32_t object_index,
                           const Ray& ray, TraversalStats& stats) {
     const Object& object = scene.objects[object_index];
     if (!object.casts_shadows) return false;
@@ -154,7 +154,7 @@ bool intersect_object_any(const Scene& scene, const Accel& accel, uint32_t objec
 
 }  // namespace
 
-Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
+Hit intersect_closest(const SceneData& scene, const Accel& accel, const Ray& ray,
                       TraversalStats* stats_out) {
     TraversalStats stats;
     Hit hit;
@@ -174,7 +174,7 @@ Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
     return hit;
 }
 
-bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
+bool intersect_any(const SceneData& scene, const Accel& accel, const Ray& ray,
                    TraversalStats* stats_out) {
     TraversalStats stats;
     bool found = false;

@@ -23,11 +23,11 @@ inline Ray to_object_space(const Object& object, const Ray& ray) {
 
 /// The closest hit in (ray.t_min, ray.t_max). Ties in t go to the smaller object index, then the
 /// smaller primitive index, so the answer does not depend on traversal order.
-Hit intersect_closest(const Scene& scene, const Accel& accel, const Ray& ray,
+Hit intersect_closest(const SceneData& scene, const Accel& accel, const Ray& ray,
                       TraversalStats* stats = nullptr);
 
 /// True when anything is hit in (ray.t_min, ray.t_max) (shadow rays).
-bool intersect_any(const Scene& scene, const Accel& accel, const Ray& ray,
+bool intersect_any(const SceneData& scene, const Accel& accel, const Ray& ray,
                    TraversalStats* stats = nullptr);
 
 }  // namespace raylane

@@ -368,7 +368,7 @@ void stream_leaf(Stream& s, const MeshAccel& mesh, uint32_t object, WideRef leaf
 /// Any object for the rays of a list, W at a time, through intersect_object_closest_from (a
 /// mesh from slot `start` of its wide tree, which the rays were listed for, or from its root).
 template <int W>
-void stream_object(Stream& s, const Scene& scene, const Accel& accel, uint32_t object,
+void stream_object(Stream& s, const SceneData& scene, const Accel& accel, uint32_t object,
                    const int32_t* list, int n, WideRef start) {
     for (int j = 0; j < n; j += W) {
         vint<W> idx;
@@ -418,7 +418,7 @@ void stream_leaf_any(Stream& s, const MeshAccel& mesh, WideRef leaf, const int32
 
 /// Any object for the open rays of a list, W at a time (a mesh from slot `start`).
 template <int W>
-void stream_object_any(Stream& s, const Scene& scene, const Accel& accel, uint32_t object,
+void stream_object_any(Stream& s, const SceneData& scene, const Accel& accel, uint32_t object,
                        const int32_t* list, int n, WideRef start) {
     for (int j = 0; j < n; j += W) {
         vint<W> idx;
@@ -437,7 +437,7 @@ void stream_object_any(Stream& s, const Scene& scene, const Accel& accel, uint32
 /// Both levels for the listed rays: the top-level BVH, then at each of its leaves every object
 /// (a mesh by its own BVH), closest hits or occlusion (`any_hit`: shadow casters only).
 template <bool any_hit, int W>
-void traverse_scene(Stream& s, const Scene& scene, const Accel& accel, int32_t* list, int n) {
+void traverse_scene(Stream& s, const SceneData& scene, const Accel& accel, int32_t* list, int n) {
     traverse_stream<W>(
         accel.top, s, list, n, list + n,
         [&](const BvhNode& top_leaf, const int32_t* tl, int tn, int32_t* free_ids) {
@@ -473,7 +473,7 @@ void traverse_scene(Stream& s, const Scene& scene, const Accel& accel, int32_t* 
 }  // namespace
 
 template <int W>
-void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void intersect_closest_stream(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                               const vmask<W>* active, HitPacket<W>* hits, int count) {
     for (int p = 0; p < count; ++p) hits[p] = HitPacket<W>{};
     if (count <= 0) return;
@@ -506,7 +506,7 @@ void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayP
 }
 
 template <int W>
-void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void intersect_any_stream(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                           const vmask<W>* active, vmask<W>* occluded, int count) {
     for (int p = 0; p < count; ++p) {
         occluded[p] = mask_and(active[p], mask_not(active[p]));
@@ -539,10 +539,10 @@ void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacke
 }
 
 // Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
-#define RAYLANE_INSTANTIATE(W)                                                                 \
-    template void intersect_closest_stream<W>(const Scene&, const Accel&, const RayPacket<W>*, \
-                                              const vmask<W>*, HitPacket<W>*, int);            \
-    template void intersect_any_stream<W>(const Scene&, const Accel&, const RayPacket<W>*,     \
+#define RAYLANE_INSTANTIATE(W)                                                                     \
+    template void intersect_closest_stream<W>(const SceneData&, const Accel&, const RayPacket<W>*, \
+                                              const vmask<W>*, HitPacket<W>*, int);                \
+    template void intersect_any_stream<W>(const SceneData&, const Accel&, const RayPacket<W>*,     \
                                           const vmask<W>*, vmask<W>*, int);
 RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
 #undef RAYLANE_INSTANTIATE

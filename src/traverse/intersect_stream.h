@@ -21,14 +21,14 @@ inline constexpr int64_t max_stream_rays = int64_t(1) << 28;
 /// Inside a mesh's BVH a list of at most W rays goes on as one packet (the packet traversal of
 /// that subtree). Worth it from about a thousand rays; any count up to max_stream_rays works.
 template <int W>
-void intersect_closest_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void intersect_closest_stream(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                               const vmask<W>* active, HitPacket<W>* hits, int count);
 
 /// intersect_any for `count` packets by the same stream traversal: occluded[p] receives the
 /// lanes of packet p that hit anything in (t_min, t_max). A ray leaves every list once it is
 /// occluded. `occluded` must not be `active`.
 template <int W>
-void intersect_any_stream(const Scene& scene, const Accel& accel, const RayPacket<W>* rays,
+void intersect_any_stream(const SceneData& scene, const Accel& accel, const RayPacket<W>* rays,
                           const vmask<W>* active, vmask<W>* occluded, int count);
 
 }  // namespace raylane::RAYLANE_ISA_NS

@@ -15,7 +15,7 @@ namespace {
 
 /// Whether surface_at may read a mesh's arrays by 32-bit gathers: every float index (three per
 /// triangle or vertex, two per uv) fits an int32. Larger meshes take the lane-by-lane path.
-bool gatherable(const Mesh& mesh) {
+bool gatherable(const MeshData& mesh) {
     static_assert(sizeof(uvec3) == 12 && sizeof(vec3) == 12 && sizeof(vec2) == 8);
     constexpr size_t most = size_t(std::numeric_limits<int32_t>::max()) / 3;
     for (size_t n : {mesh.tris.size(), mesh.positions.size(), mesh.normal_tris.size(),
@@ -37,7 +37,7 @@ struct TriangleCorners {
 
 /// The corners of the active lanes' triangles of one mesh, by vector gathers (gatherable).
 template <int W>
-void gather_corners(const Mesh& mesh, const vint<W>& prim, TriangleCorners<W>& corners,
+void gather_corners(const MeshData& mesh, const vint<W>& prim, TriangleCorners<W>& corners,
                     vmask<W> active) {
     corners.mesh_bits = bits(active);
     // the lanes' triangles' corner indices in `tris`
@@ -79,8 +79,8 @@ void gather_corners(const Mesh& mesh, const vint<W>& prim, TriangleCorners<W>& c
 /// The corners of the active lanes' mesh triangles lane by lane (lanes on several objects, or
 /// on a mesh too large for gathers), and every active lane's material.
 template <int W>
-void load_corners_by_lane(const Scene& scene, const HitPacket<W>& hits, TriangleCorners<W>& corners,
-                          vint<W>& material, vmask<W> active) {
+void load_corners_by_lane(const SceneData& scene, const HitPacket<W>& hits,
+                          TriangleCorners<W>& corners, vint<W>& material, vmask<W> active) {
     alignas(64) float p[3][3][W] = {}, n[3][3][W] = {}, t[3][2][W] = {};
     alignas(64) int32_t materials[W] = {};
     for_each_active(active, [&](int i) {
@@ -88,7 +88,7 @@ void load_corners_by_lane(const Scene& scene, const HitPacket<W>& hits, Triangle
         materials[i] = static_cast<int32_t>(object.material);
         if (object.kind != ShapeKind::mesh) return;
         corners.mesh_bits |= 1u << i;
-        const Mesh& mesh = scene.meshes[object.shape];
+        const MeshData& mesh = scene.meshes[object.shape];
         const uint32_t prim = static_cast<uint32_t>(get(hits.prim, i));
         const uvec3 tri = mesh.tris[prim];
         for (int c = 0; c < 3; ++c)
@@ -121,8 +121,8 @@ void load_corners_by_lane(const Scene& scene, const HitPacket<W>& hits, Triangle
 /// material by material, mostly one object): its material, a mesh's values by vector gathers
 /// (while the indices fit an int); else lane by lane.
 template <int W>
-TriangleCorners<W> triangle_corners(const Scene& scene, const HitPacket<W>& hits, vint<W>& material,
-                                    vmask<W> active) {
+TriangleCorners<W> triangle_corners(const SceneData& scene, const HitPacket<W>& hits,
+                                    vint<W>& material, vmask<W> active) {
     TriangleCorners<W> corners;
     const int32_t first_index = get(hits.object, first_active(active));
     const Object& first_object = scene.objects[static_cast<uint32_t>(first_index)];
@@ -219,7 +219,7 @@ void to_world(const Object& object, const Vec3<W>& p, const vec3& n, Vec3<W>& po
 /// When the analytic lanes all hit one plane: their surface W lanes at a time
 /// (analytic_geometry, to_world). Returns the analytic lanes still to do.
 template <int W>
-vmask<W> plane_surface(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
+vmask<W> plane_surface(const SceneData& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
                        SurfacePacket<W>& sp, vmask<W> analytic) {
     const uint32_t first = static_cast<uint32_t>(get(hits.object, first_active(analytic)));
     const Object& object = scene.objects[first];
@@ -244,7 +244,7 @@ vmask<W> plane_surface(const Scene& scene, const RayPacket<W>& rays, const HitPa
 
 /// The active lanes one at a time through the scalar surface_at.
 template <int W>
-void surface_by_lane(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
+void surface_by_lane(const SceneData& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
                      SurfacePacket<W>& sp, vmask<W> active) {
     for_each_active(active, [&](int i) {
         const SurfacePoint s = surface_at(scene, get_ray(rays, i), get_hit(hits, i));
@@ -265,8 +265,8 @@ void surface_by_lane(const Scene& scene, const RayPacket<W>& rays, const HitPack
 }  // namespace
 
 template <int W>
-SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
-                            vmask<W> active) {
+SurfacePacket<W> surface_at(const SceneData& scene, const RayPacket<W>& rays,
+                            const HitPacket<W>& hits, vmask<W> active) {
     SurfacePacket<W> sp;
     if (none(active)) return sp;
     // mesh: the scalar formulas, W lanes at a time
@@ -295,8 +295,8 @@ SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const 
 }
 
 // Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
-#define RAYLANE_INSTANTIATE(W)                                                 \
-    template SurfacePacket<W> surface_at<W>(const Scene&, const RayPacket<W>&, \
+#define RAYLANE_INSTANTIATE(W)                                                     \
+    template SurfacePacket<W> surface_at<W>(const SceneData&, const RayPacket<W>&, \
                                             const HitPacket<W>&, vmask<W>);
 RAYLANE_FOR_EACH_WIDTH(RAYLANE_INSTANTIATE)
 #undef RAYLANE_INSTANTIATE

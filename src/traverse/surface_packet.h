@@ -17,11 +17,11 @@ struct SurfacePacket {
     vint<W> material = vint<W>(0);
 };
 
-/// Evaluates position, normals and uv at the active lanes' hits (all must be hits). Mesh hits
+/// Evaluates position, normals and uv at the active lanes' hits (all must be hits). MeshData hits
 /// are evaluated W at a time; analytic shapes lane by lane through the scalar surface_at
 /// (surface_scalar.h).
 template <int W>
-SurfacePacket<W> surface_at(const Scene& scene, const RayPacket<W>& rays, const HitPacket<W>& hits,
-                            vmask<W> active);
+SurfacePacket<W> surface_at(const SceneData& scene, const RayPacket<W>& rays,
+                            const HitPacket<W>& hits, vmask<W> active);
 
 }  // namespace raylane::RAYLANE_ISA_NS

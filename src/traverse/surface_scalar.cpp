@@ -26,7 +26,7 @@ struct TriangleCorners {
     bool has_normals = false, has_uvs = false;
 };
 
-TriangleCorners triangle_corners(const Mesh& mesh, uint32_t prim) {
+TriangleCorners triangle_corners(const MeshData& mesh, uint32_t prim) {
     TriangleCorners corners;
     const uvec3 tri = mesh.tris[prim];
     for (int k = 0; k < 3; ++k) corners.pos[k] = mesh.positions[tri[k]];
@@ -71,7 +71,8 @@ vec2 texture_uv(const TriangleCorners& corners, float u, float v, float w) {
 /// An analytic shape's normal and uv at the object-space point p of the ray r (in object space),
 /// and p moved back onto the surface. uv only for a material that reads it (spheres and
 /// cylinders skip acos and atan2 otherwise).
-LocalGeometry analytic_geometry(const Scene& scene, const Object& object, const Ray& r, vec3& p) {
+LocalGeometry analytic_geometry(const SceneData& scene, const Object& object, const Ray& r,
+                                vec3& p) {
     const Material& m = scene.materials[object.material];
     const bool with_uv = m.texture >= 0 || m.normal_map >= 0;
     LocalGeometry g;
@@ -135,7 +136,7 @@ void to_world(const Object& object, const vec3& p, const vec3& n, vec3& position
 
 }  // namespace
 
-SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit) {
+SurfacePoint surface_at(const SceneData& scene, const Ray& ray, const Hit& hit) {
     SurfacePoint sp;
     const Object& object = scene.objects[hit.object];
     sp.material = object.material;

@@ -18,6 +18,6 @@ struct SurfacePoint {
 
 /// Evaluates position, normals and uv at a hit found by intersect_closest. uv is 0 on spheres
 /// and cylinders whose material reads neither a texture nor a normal map (it would go unused).
-SurfacePoint surface_at(const Scene& scene, const Ray& ray, const Hit& hit);
+SurfacePoint surface_at(const SceneData& scene, const Ray& ray, const Hit& hit);
 
 }  // namespace raylane

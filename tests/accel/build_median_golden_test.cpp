@@ -126,7 +126,7 @@ TEST(MedianReference, SatisfiesTheBvhInvariants) {
 TEST(BuildMedianGolden, DragonTreeIsTheReferenceTreeAndTheRecordedOne) {
     const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/dragon.ply";
     if (!std::filesystem::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
-    const Mesh mesh = load_mesh(path);
+    const MeshData mesh = load_mesh(path);
     std::vector<Aabb> bounds(mesh.tris.size());
     for (size_t i = 0; i < mesh.tris.size(); ++i)
         for (uint32_t v : {mesh.tris[i].x, mesh.tris[i].y, mesh.tris[i].z})

@@ -80,8 +80,8 @@ TEST(BuildMedian, AllCentroidsEqualStillTerminates) {
 }
 
 /// A wavy grid of w x w squares, two triangles each.
-Mesh grid_mesh(uint32_t w) {
-    Mesh mesh;
+MeshData grid_mesh(uint32_t w) {
+    MeshData mesh;
     for (uint32_t y = 0; y <= w; ++y)
         for (uint32_t x = 0; x <= w; ++x)
             mesh.positions.push_back(vec3(float(x), float(y), std::sin(0.1f * float(x * y))));
@@ -95,7 +95,7 @@ Mesh grid_mesh(uint32_t w) {
 }
 
 TEST(BuildMesh, PhasesAreTimedAndAddUpToNoMoreThanTheBuild) {
-    const Mesh mesh = grid_mesh(200);  // 80,000 triangles
+    const MeshData mesh = grid_mesh(200);  // 80,000 triangles
     const auto start = std::chrono::steady_clock::now();
     const MeshAccel accel = build_mesh_accel(mesh, BuildParams{});
     const double build_ms =
@@ -120,7 +120,7 @@ TEST(BuildMesh, PhasesAreTimedAndAddUpToNoMoreThanTheBuild) {
 
 TEST(BuildMesh, NodesSplitAboveTheSubtreeSizeGiveTheSameTreeAndVertices) {
     // the mesh build lends its vertex array to the nodes split on their own as well
-    const Mesh mesh = grid_mesh(100);  // 20,000 triangles
+    const MeshData mesh = grid_mesh(100);  // 20,000 triangles
     const MeshAccel whole = build_mesh_accel(mesh, BuildParams{});
     for (uint32_t subtree : {1u, 3000u, 15000u}) {
         const MeshAccel split = build_mesh_accel(mesh, BuildParams{.median_subtree = subtree});

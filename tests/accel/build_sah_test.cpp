@@ -113,7 +113,7 @@ TEST(BuildSah, ExponentialCentroidsStayWithinTheTraversalStack) {
 TEST(BuildSah, DragonTreeIsCheaperThanTheMedianSplitInTheSameMemory) {
     const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/dragon.ply";
     if (!std::filesystem::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
-    const Mesh mesh = load_mesh(path);
+    const MeshData mesh = load_mesh(path);
     const MeshAccel median = build_mesh_accel(mesh, BuildParams{});
     const MeshAccel sah_accel = build_mesh_accel(mesh, sah());
     std::vector<Aabb> boxes(mesh.tris.size());

@@ -171,7 +171,7 @@ TEST(CollapseWide, CheckerFindsBrokenTrees) {
 /// triangles (every seventh one a point), both builds.
 TEST(CollapseWide, LeafTrianglesAreTheLeafOrderVerticesInSoa) {
     for (size_t n : {1, 2, 3, 5, 1000}) {
-        Mesh mesh;
+        MeshData mesh;
         std::mt19937 rng(static_cast<unsigned>(n));
         std::uniform_real_distribution<float> uni(-10.0f, 10.0f);
         for (size_t i = 0; i < n; ++i) {
@@ -219,7 +219,7 @@ TEST(CollapseWide, LeafTrianglesAreTheLeafOrderVerticesInSoa) {
 TEST(CollapseWide, DragonWithinTheMemoryBudget) {
     const std::string path = std::string(RAYLANE_SHARED_DIR) + "/models/dragon.ply";
     if (!std::filesystem::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
-    const Mesh mesh = load_mesh(path);
+    const MeshData mesh = load_mesh(path);
     for (BvhBuild method : {BvhBuild::median, BvhBuild::sah}) {
         const MeshAccel accel = build_mesh_accel(mesh, wide_params(method));
         ASSERT_EQ(check_wide_bvh(accel.wide, accel.bvh), "");

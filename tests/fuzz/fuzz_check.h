@@ -49,9 +49,9 @@ inline bool indices_below(const std::vector<uvec3>& tris, size_t count) {
     return true;
 }
 
-/// The Mesh contract of scene/scene.h: triangles, in-range indices, one normal / uv triple per
+/// The MeshData contract of scene/scene.h: triangles, in-range indices, one normal / uv triple per
 /// triangle or none, finite positions, normals and uvs (load_obj.h, load_ply.h).
-inline void check_mesh(const Mesh& mesh) {
+inline void check_mesh(const MeshData& mesh) {
     require(!mesh.tris.empty(), "mesh without triangles");
     require(indices_below(mesh.tris, mesh.positions.size()), "position index out of range");
     require(mesh.normal_tris.empty() || mesh.normal_tris.size() == mesh.tris.size(),

@@ -28,11 +28,11 @@ bool names_large_model(std::string_view text) {
     return false;
 }
 
-bool texture_index_ok(int32_t index, const Scene& scene) {
+bool texture_index_ok(int32_t index, const SceneData& scene) {
     return index >= -1 && index < static_cast<int64_t>(scene.textures.size());
 }
 
-size_t shape_count(ShapeKind kind, const Scene& scene) {
+size_t shape_count(ShapeKind kind, const SceneData& scene) {
     switch (kind) {
         case ShapeKind::sphere:
             return scene.spheres.size();
@@ -51,7 +51,7 @@ size_t shape_count(ShapeKind kind, const Scene& scene) {
 }
 
 /// What the renderer relies on: indices in range, finite numbers, positive sizes.
-void check_scene(const Scene& scene) {
+void check_scene(const SceneData& scene) {
     const Camera& c = scene.camera;
     require(finite(c.position) && finite(c.look_at) && finite(c.up), "non-finite camera vector");
     require(c.fov_deg > 0.0f && c.fov_deg < 180.0f, "camera fov_deg outside (0, 180)");
@@ -98,7 +98,7 @@ void check_scene(const Scene& scene) {
     for (const Triangle& t : scene.triangles) {
         require(finite(t.p0) && finite(t.p1) && finite(t.p2), "non-finite triangle");
     }
-    for (const Mesh& m : scene.meshes) fuzz::check_mesh(m);
+    for (const MeshData& m : scene.meshes) fuzz::check_mesh(m);
 }
 
 }  // namespace

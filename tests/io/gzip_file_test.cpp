@@ -83,8 +83,8 @@ TEST(LoadMeshGzip, ReadsAnObjGzLikeThePlainObj) {
     test::TempDir dir("raylane_gzip_");
     test::write_bytes(dir.path / "square.obj", gz_square_obj);
     test::write_bytes(dir.path / "square.OBJ.GZ", test::gzip(gz_square_obj));
-    const Mesh plain = load_mesh((dir.path / "square.obj").string());
-    const Mesh packed = load_mesh((dir.path / "square.OBJ.GZ").string());
+    const MeshData plain = load_mesh((dir.path / "square.obj").string());
+    const MeshData packed = load_mesh((dir.path / "square.OBJ.GZ").string());
     EXPECT_EQ(packed.name, "square.OBJ.GZ");
     ASSERT_EQ(packed.positions.size(), 4u);
     EXPECT_EQ(packed.positions[2], vec3(1, 1, 0));
@@ -116,7 +116,7 @@ TEST(LoadMeshGzip, ReadsAsciiAndBinaryPlyGz) {
     test::write_bytes(dir.path / "binary.ply.gz", test::gzip(binary));
     for (const char* name : {"ascii.ply.gz", "binary.ply.gz"}) {
         SCOPED_TRACE(name);
-        const Mesh m = load_mesh((dir.path / name).string());
+        const MeshData m = load_mesh((dir.path / name).string());
         EXPECT_EQ(m.name, name);
         ASSERT_EQ(m.positions.size(), 3u);
         EXPECT_EQ(m.positions[2], vec3(0, 3, 0.5f));

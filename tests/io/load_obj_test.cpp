@@ -25,7 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Mesh obj(std::string_view text) { return load_obj_from_memory(text, "test.obj"); }
+MeshData obj(std::string_view text) { return load_obj_from_memory(text, "test.obj"); }
 
 /// Checks that loading `text` fails with a one-line message holding every part of `parts`.
 void expect_obj_error(std::string_view text, std::initializer_list<std::string_view> parts) {
@@ -46,7 +46,7 @@ void expect_triangles(const std::vector<uvec3>& got, const std::vector<uvec3>& w
     }
 }
 
-void expect_same_mesh(const Mesh& a, const Mesh& b) {
+void expect_same_mesh(const MeshData& a, const MeshData& b) {
     ASSERT_EQ(a.positions.size(), b.positions.size());
     for (size_t i = 0; i < a.positions.size(); ++i) EXPECT_EQ(a.positions[i], b.positions[i]);
     ASSERT_EQ(a.normals.size(), b.normals.size());
@@ -67,7 +67,8 @@ constexpr const char* four_vertices =
 
 TEST(LoadObj, ReadsPositionsUvsAndNormals) {
     // (a face with area: the loader drops zero-area faces, and a mesh needs one face)
-    Mesh m = obj("v 1.5 -2 3e2\nv 0 0 0\nv 0 1 0\nvt 0.25 0.75\nvn 0 -1 0\nf 1/1/1 2/1/1 3/1/1\n");
+    MeshData m =
+        obj("v 1.5 -2 3e2\nv 0 0 0\nv 0 1 0\nvt 0.25 0.75\nvn 0 -1 0\nf 1/1/1 2/1/1 3/1/1\n");
     ASSERT_EQ(m.positions.size(), 3u);
     EXPECT_EQ(m.positions[0], vec3(1.5f, -2.0f, 300.0f));
     ASSERT_EQ(m.uvs.size(), 1u);
@@ -78,48 +79,48 @@ TEST(LoadObj, ReadsPositionsUvsAndNormals) {
 
 TEST(LoadObj, ReadsEveryIndexForm) {
     const std::string base = four_vertices;
-    Mesh v = obj(base + "f 1 2 3\n");
+    MeshData v = obj(base + "f 1 2 3\n");
     expect_triangles(v.tris, {{0, 1, 2}});
     EXPECT_TRUE(v.uv_tris.empty());
     EXPECT_TRUE(v.normal_tris.empty());
     EXPECT_TRUE(v.uvs.empty());
     EXPECT_TRUE(v.normals.empty());
 
-    Mesh vt = obj(base + "f 1/4 2/3 3/2\n");
+    MeshData vt = obj(base + "f 1/4 2/3 3/2\n");
     expect_triangles(vt.tris, {{0, 1, 2}});
     expect_triangles(vt.uv_tris, {{3, 2, 1}});
     EXPECT_TRUE(vt.normal_tris.empty());
     EXPECT_EQ(vt.uvs.size(), 4u);
 
-    Mesh vn = obj(base + "f 1//2 2//3 3//4\n");
+    MeshData vn = obj(base + "f 1//2 2//3 3//4\n");
     expect_triangles(vn.tris, {{0, 1, 2}});
     expect_triangles(vn.normal_tris, {{1, 2, 3}});
     EXPECT_TRUE(vn.uv_tris.empty());
     EXPECT_EQ(vn.normals.size(), 4u);
 
-    Mesh all = obj(base + "f 1/2/3 2/3/4 3/4/1\n");
+    MeshData all = obj(base + "f 1/2/3 2/3/4 3/4/1\n");
     expect_triangles(all.tris, {{0, 1, 2}});
     expect_triangles(all.uv_tris, {{1, 2, 3}});
     expect_triangles(all.normal_tris, {{2, 3, 0}});
 }
 
 TEST(LoadObj, ReadsNegativeIndicesRelativeToTheVerticesSoFar) {
-    Mesh m =
+    MeshData m =
         obj(std::string(four_vertices) + "f -4/-3/-2 -3/-2/-1 -1/-1/-4\nv 5 5 5\nf -1 -2 -3\n");
     expect_triangles(m.tris, {{0, 1, 3}, {4, 3, 2}});
     // The second face has no vt/vn, so the mesh has neither (documented).
     EXPECT_TRUE(m.uv_tris.empty());
     EXPECT_TRUE(m.normal_tris.empty());
 
-    Mesh same = obj(std::string(four_vertices) + "f -4/-4/-4 -3/-3/-3 -2/-2/-2\n");
-    Mesh positive = obj(std::string(four_vertices) + "f 1/1/1 2/2/2 3/3/3\n");
+    MeshData same = obj(std::string(four_vertices) + "f -4/-4/-4 -3/-3/-3 -2/-2/-2\n");
+    MeshData positive = obj(std::string(four_vertices) + "f 1/1/1 2/2/2 3/3/3\n");
     expect_same_mesh(same, positive);
 }
 
 TEST(LoadObj, TriangulatesPolygonsAsAFan) {
-    Mesh quad = obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    MeshData quad = obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
     expect_triangles(quad.tris, {{0, 1, 2}, {0, 2, 3}});
-    Mesh pentagon =
+    MeshData pentagon =
         obj("v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 5/1/1 4/1/1 3/1/1 2/1/1 1/1/1\n"
             "vt 0 0\nvn 0 0 1\n");
     expect_triangles(pentagon.tris, {{4, 3, 2}, {4, 2, 1}, {4, 1, 0}});
@@ -128,8 +129,8 @@ TEST(LoadObj, TriangulatesPolygonsAsAFan) {
 }
 
 TEST(LoadObj, AcceptsCrlfTabsRunsOfSpacesAndNoFinalNewline) {
-    Mesh plain = obj("v 1 2 3\nv 4 5 6\nv 7 8 10\nvt 0.5 0.5\nf 1/1 2/1 3/1\n");
-    Mesh messy =
+    MeshData plain = obj("v 1 2 3\nv 4 5 6\nv 7 8 10\nvt 0.5 0.5\nf 1/1 2/1 3/1\n");
+    MeshData messy =
         obj("\xEF\xBB\xBFv  1 2 3\r\n\tv\t4\t5\t6  \r\n  v 7   8 10 \t\r\n\r\nvt 0.5 0.5\r\nf  "
             "1/1\t2/1 3/1 ");
     expect_same_mesh(plain, messy);
@@ -148,7 +149,7 @@ TEST(LoadObj, ReadsLfCrlfAndCrLineEndsAlike) {
         mixed += std::string(lines[i]) + mixed_ends[i % 3];
     }
     for (const std::string& text : {lf, crlf, cr, mixed}) {
-        Mesh m = obj(text);
+        MeshData m = obj(text);
         ASSERT_EQ(m.positions.size(), 4u);
         EXPECT_EQ(m.positions[1], vec3(2, 0, 0));
         EXPECT_EQ(m.positions[3], vec3(0, 0, 4));
@@ -168,12 +169,12 @@ TEST(LoadObj, ReadsCornersWithAnEmptyTextureOrNormalIndex) {
     const std::string base = four_vertices;
     for (const char* face : {"f 1/ 2/ 3/\n", "f 1// 2// 3//\n", "f 1/ 2// 3\n"}) {
         SCOPED_TRACE(face);
-        Mesh m = obj(base + face);
+        MeshData m = obj(base + face);
         expect_triangles(m.tris, {{0, 1, 2}});
         EXPECT_TRUE(m.uv_tris.empty());
         EXPECT_TRUE(m.normal_tris.empty());
     }
-    Mesh uv = obj(base + "f 1/4/ 2/3/ 3/2/\n");
+    MeshData uv = obj(base + "f 1/4/ 2/3/ 3/2/\n");
     expect_triangles(uv.tris, {{0, 1, 2}});
     expect_triangles(uv.uv_tris, {{3, 2, 1}});
     EXPECT_TRUE(uv.normal_tris.empty());
@@ -182,13 +183,13 @@ TEST(LoadObj, ReadsCornersWithAnEmptyTextureOrNormalIndex) {
 }
 
 TEST(LoadObj, AcceptsABareUsemtl) {
-    Mesh m = obj("usemtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl \t\r\nf 1 2 3\nusemtl red\n");
+    MeshData m = obj("usemtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl \t\r\nf 1 2 3\nusemtl red\n");
     EXPECT_EQ(m.positions.size(), 3u);
     expect_triangles(m.tris, {{0, 1, 2}});
 }
 
 TEST(LoadObj, IgnoresCommentsGroupsMaterialsAndUnknownKeywords) {
-    Mesh m =
+    MeshData m =
         obj("# header comment\nmtllib box.mtl\no box\ng side\ns 1\ns off\nusemtl red paint\n"
             "vp 0.5 0.5\ncurv2 1 2\nv 0 0 0 # inline comment\nv 1 0 0 1.0\nv 0 1 0 0.1 0.2 0.3\n"
             "l 1 2\np 1\nf 1 2 3 # the only face\n#f 1 2 3\n");
@@ -197,7 +198,7 @@ TEST(LoadObj, IgnoresCommentsGroupsMaterialsAndUnknownKeywords) {
 }
 
 TEST(LoadObj, ReadsTextureCoordinatesWithOneToThreeValues) {
-    Mesh m =
+    MeshData m =
         obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5\nvt 0.25 0.75\nvt 0.1 0.2 0.3\nf 1/1 2/2 3/3\n");
     ASSERT_EQ(m.uvs.size(), 3u);
     EXPECT_EQ(m.uvs[0], vec2(0.5f, 0.0f));
@@ -206,18 +207,18 @@ TEST(LoadObj, ReadsTextureCoordinatesWithOneToThreeValues) {
 }
 
 TEST(LoadObj, DropsNormalsAndUvsWhenSomeFacesLackThem) {
-    Mesh m = obj(std::string(four_vertices) + "f 1/1/1 2/2/2 3/3/3\nf 1/1 3/3 4/4\n");
+    MeshData m = obj(std::string(four_vertices) + "f 1/1/1 2/2/2 3/3/3\nf 1/1 3/3 4/4\n");
     EXPECT_EQ(m.tris.size(), 2u);
     EXPECT_EQ(m.uv_tris.size(), 2u);
     EXPECT_TRUE(m.normal_tris.empty());
     EXPECT_TRUE(m.normals.empty());
-    Mesh none = obj(std::string(four_vertices) + "f 1/1/1 2/2/2 3/3/3\nf 1 3 4\n");
+    MeshData none = obj(std::string(four_vertices) + "f 1/1/1 2/2/2 3/3/3\nf 1 3 4\n");
     EXPECT_TRUE(none.uv_tris.empty());
     EXPECT_TRUE(none.uvs.empty());
 }
 
 TEST(LoadObj, AcceptsFacesBeforeTheVerticesTheyUse) {
-    Mesh m = obj("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    MeshData m = obj("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
     expect_triangles(m.tris, {{0, 1, 2}});
 }
 
@@ -226,10 +227,10 @@ TEST(LoadObj, LoadsFromDiskAndNamesTheMeshAfterTheFile) {
     fs::create_directories(dir);
     fs::path file = dir / "Tri.OBJ";
     std::ofstream(file) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3";
-    Mesh m = load_mesh(file.string());
+    MeshData m = load_mesh(file.string());
     EXPECT_EQ(m.name, "Tri.OBJ");
     EXPECT_EQ(m.tris.size(), 1u);
-    Mesh direct = load_obj(file.string());
+    MeshData direct = load_obj(file.string());
     expect_same_mesh(m, direct);
     fs::remove_all(dir);
 }
@@ -239,7 +240,7 @@ TEST(LoadObj, LoadsFromDiskAndNamesTheMeshAfterTheFile) {
 TEST(LoadObj, ReadsTheDragon) {
     const std::string path = test::models_dir + "/dragon.obj";
     if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
-    Mesh m = load_obj(path);
+    MeshData m = load_obj(path);
     EXPECT_EQ(m.name, "dragon.obj");
     EXPECT_EQ(m.positions.size(), 50000u);
     EXPECT_EQ(m.tris.size(), 100000u);
@@ -259,7 +260,7 @@ Bounds bounds_of(const std::vector<vec3>& points) {
     }
     return b;
 }
-double surface_area(const Mesh& m) {
+double surface_area(const MeshData& m) {
     double area = 0.0;
     for (const uvec3& t : m.tris) {
         glm::dvec3 a(m.positions[t.x]), b(m.positions[t.y]), c(m.positions[t.z]);
@@ -273,8 +274,8 @@ TEST(LoadObj, DragonObjMatchesDragonPlyUnderTheDocumentedTransform) {
     const std::string ply_path = test::models_dir + "/dragon.ply";
     if (!fs::exists(obj_path) || !fs::exists(ply_path))
         RAYLANE_MODEL_MISSING() << "dragon files not present";
-    Mesh from_obj = load_obj(obj_path);
-    Mesh from_ply = load_ply(ply_path);
+    MeshData from_obj = load_obj(obj_path);
+    MeshData from_ply = load_ply(ply_path);
     ASSERT_EQ(from_obj.tris.size(), from_ply.tris.size());
     ASSERT_EQ(from_obj.positions.size(), from_ply.positions.size());
     // models/README.md: obj = 5.2084 * ply + (0, 4.970, 0).
@@ -294,7 +295,7 @@ TEST(LoadObj, DragonObjMatchesDragonPlyUnderTheDocumentedTransform) {
 TEST(LoadObj, ReadsTheAppleWithUvsAndNormals) {
     const std::string path = test::models_dir + "/apple/food_apple_01_4k.obj";
     if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
-    Mesh m = load_obj(path);
+    MeshData m = load_obj(path);
     EXPECT_EQ(m.positions.size(), 3504u);
     EXPECT_EQ(m.uvs.size(), 4019u);
     EXPECT_EQ(m.normals.size(), 3504u);
@@ -309,7 +310,7 @@ TEST(LoadObj, ReadsTheAppleWithUvsAndNormals) {
 TEST(LoadObj, ReadsTheCornellBoxQuadsWithNegativeIndices) {
     const std::string path = test::models_dir + "/cornell_box/CornellBox-Original.obj";
     if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
-    Mesh m = load_obj(path);
+    MeshData m = load_obj(path);
     EXPECT_EQ(m.positions.size(), 72u);
     EXPECT_EQ(m.tris.size(), 36u);
     // The floor quad `f -4 -3 -2 -1` follows the first four vertices.
@@ -486,7 +487,7 @@ TEST(LoadObjErrors, SurvivesRandomByteMutations) {
             }
         }
         try {
-            Mesh m = obj(text);
+            MeshData m = obj(text);
             auto in_range = [](const std::vector<uvec3>& tris, size_t n) {
                 for (const uvec3& t : tris) {
                     if (t.x >= n || t.y >= n || t.z >= n) return false;

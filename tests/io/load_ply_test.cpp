@@ -24,7 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Mesh ply(std::string_view bytes) { return load_ply_from_memory(bytes, "test.ply"); }
+MeshData ply(std::string_view bytes) { return load_ply_from_memory(bytes, "test.ply"); }
 
 void expect_ply_error(std::string_view bytes, std::initializer_list<std::string> parts) {
     std::string message = test::input_error_of([&] { ply(bytes); });
@@ -219,7 +219,7 @@ std::vector<Layout> layouts() {
     };
 }
 
-void expect_reference_mesh(const Mesh& m, bool normals, bool uvs) {
+void expect_reference_mesh(const MeshData& m, bool normals, bool uvs) {
     ASSERT_EQ(m.positions.size(), ref_positions.size());
     for (size_t i = 0; i < ref_positions.size(); ++i) EXPECT_EQ(m.positions[i], ref_positions[i]);
     ASSERT_EQ(m.tris.size(), ref_tris.size());
@@ -251,7 +251,7 @@ TEST(LoadPly, ReadsEveryLayoutInEveryFormat) {
         for (Format format : {Format::ascii, Format::little, Format::big}) {
             SCOPED_TRACE(std::string(layout.label) + ", " + format_name(format));
             std::string bytes = write_ply(format, layout.elements);
-            Mesh m = ply(bytes);
+            MeshData m = ply(bytes);
             expect_reference_mesh(m, layout.normals, layout.uvs);
             EXPECT_EQ(m.name, "test.ply");
         }
@@ -264,7 +264,7 @@ TEST(LoadPly, AcceptsCrlfHeaderAndBlankLinesInAscii) {
         "property float y\r\nproperty float z\r\n\r\nelement face 1\r\n"
         "property list uchar int vertex_indices\r\nend_header\r\n"
         "0 0 0\r\n\r\n1 0 0 \r\n\t0 1 0\r\n3 0 1 2";
-    Mesh m = ply(text);
+    MeshData m = ply(text);
     ASSERT_EQ(m.positions.size(), 3u);
     EXPECT_EQ(m.positions[1], vec3(1, 0, 0));
     ASSERT_EQ(m.tris.size(), 1u);
@@ -307,7 +307,7 @@ TEST(LoadPly, StartsABinaryBodyAfterTheHeadersOwnLineEnd) {
         bytes.replace(0, header.size(), ended);
         std::memcpy(&bytes[ended.size()], &x0, 4);
         ASSERT_EQ(bytes[ended.size()], '\n');
-        Mesh m = ply(bytes);
+        MeshData m = ply(bytes);
         ASSERT_EQ(m.positions.size(), 5u);
         EXPECT_EQ(m.positions[0], vec3(x0, ref_positions[0].y, ref_positions[0].z));
         EXPECT_EQ(m.positions[4], ref_positions[4]);
@@ -320,7 +320,7 @@ TEST(LoadPly, StartsABinaryBodyAfterTheHeadersOwnLineEnd) {
 TEST(LoadPly, ReadsTheBinaryDragon) {
     const std::string path = test::models_dir + "/dragon.ply";
     if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
-    Mesh m = load_ply(path);
+    MeshData m = load_ply(path);
     EXPECT_EQ(m.name, "dragon.ply");
     EXPECT_EQ(m.positions.size(), 50000u);
     EXPECT_EQ(m.tris.size(), 100000u);
@@ -343,7 +343,7 @@ TEST(LoadPly, ReadsTheBinaryDragon) {
 TEST(LoadPly, ReadsTheAsciiBunny) {
     const std::string path = test::models_dir + "/bunny.ply";
     if (!fs::exists(path)) RAYLANE_MODEL_MISSING() << path << " not present";
-    Mesh m = load_ply(path);
+    MeshData m = load_ply(path);
     EXPECT_EQ(m.positions.size(), 35947u);
     EXPECT_EQ(m.tris.size(), 69451u);
     EXPECT_TRUE(m.normal_tris.empty());
@@ -639,7 +639,7 @@ TEST(LoadPlyErrors, SurvivesRandomByteMutations) {
                 }
             }
             try {
-                Mesh m = ply(bytes);
+                MeshData m = ply(bytes);
                 for (const uvec3& t : m.tris) {
                     ASSERT_TRUE(t.x < m.positions.size() && t.y < m.positions.size() &&
                                 t.z < m.positions.size());

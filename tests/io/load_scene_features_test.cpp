@@ -17,7 +17,7 @@ namespace {
 const char* const features_camera =
     R"("camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "fov_deg": 60})";
 
-Scene load_members(const std::string& members) {
+SceneData load_members(const std::string& members) {
     return load_scene_from_string(std::string("{") + features_camera + ", " + members + "}",
                                   std::string(RAYLANE_SOURCE_DIR) + "/scenes/test.json");
 }
@@ -35,7 +35,7 @@ std::string members_error(const std::string& members) {
 }
 
 TEST(LoadSceneFeatures, ReadsMirrorAndGlassMaterials) {
-    const Scene s = load_members(R"("materials": {
+    const SceneData s = load_members(R"("materials": {
         "m": {"reflection": 0.5, "k_a_after": 1, "fresnel": false},
         "g": {"refraction": {"ior": 1.33, "filter": [1, 0.9, 0.8]}}})");
     ASSERT_EQ(s.materials.size(), 2u);
@@ -49,7 +49,7 @@ TEST(LoadSceneFeatures, ReadsMirrorAndGlassMaterials) {
 }
 
 TEST(LoadSceneFeatures, PresetsSetTheFittedParametersOfTheModel) {
-    const Scene s = load_members(R"("materials": {"n": {"model": "ward", "preset": "nickel"},
+    const SceneData s = load_members(R"("materials": {"n": {"model": "ward", "preset": "nickel"},
                                           "d": {"model": "blinn-phong", "preset": "delrin"}})");
     EXPECT_EQ(s.materials[0].model, SpecularModel::ward);
     EXPECT_FLOAT_EQ(s.materials[0].alpha, 0.0432f);
@@ -65,7 +65,7 @@ TEST(LoadSceneFeatures, PresetsSetTheFittedParametersOfTheModel) {
 }
 
 TEST(LoadSceneFeatures, AreaLightsAddAVisibleEmitterThatCastsNoShadow) {
-    const Scene s = load_members(R"("lights": [
+    const SceneData s = load_members(R"("lights": [
         {"type": "box", "min": [-3, 5.5, 11], "max": [-2, 9.5, 11], "intensity": 400,
          "samples": 25},
         {"type": "rect", "corner": [0, 2, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 2],
@@ -95,7 +95,7 @@ TEST(LoadSceneFeatures, AreaLightsAddAVisibleEmitterThatCastsNoShadow) {
 }
 
 TEST(LoadSceneFeatures, ReadsTheLensTheShadingOptionsAndTheTonemap) {
-    const Scene s = load_members(R"("shading": {"brdf": "report", "max_reflection_depth": 50,
+    const SceneData s = load_members(R"("shading": {"brdf": "report", "max_reflection_depth": 50,
                                          "local": false, "reflected_color": [1, 0, 1]},
                             "tonemap": "report")");
     EXPECT_EQ(s.shading.brdf, BrdfScaling::report);
@@ -105,7 +105,7 @@ TEST(LoadSceneFeatures, ReadsTheLensTheShadingOptionsAndTheTonemap) {
     EXPECT_EQ(s.shading.reflected_color, vec3(1.0f, 0.0f, 1.0f));
     EXPECT_EQ(s.tonemap, Tonemap::report);
     // focal distance defaults to the look-at distance
-    const Scene lens = load_scene_from_string(
+    const SceneData lens = load_scene_from_string(
         R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 7], "fov_deg": 60,
                        "lens_radius": 0.25}})",
         "lens.json");
@@ -117,7 +117,7 @@ TEST(LoadSceneFeatures, ReadsTheLensTheShadingOptionsAndTheTonemap) {
 }
 
 TEST(LoadSceneFeatures, TexturesAreLoadedOnceAndMissingOnesNameWhereItLooked) {
-    const Scene s = load_members(R"("environment": {"file": "envMap2.jpg", "filter": "nearest"},
+    const SceneData s = load_members(R"("environment": {"file": "envMap2.jpg", "filter": "nearest"},
         "materials": {"a": {"texture": "apple_texture.jpg", "texture_specular": true},
                       "b": {"texture": "apple_texture.jpg"},
                       "c": {"texture": {"checker": [[1, 1, 1], [0, 0, 0]], "checks": 4}}})");
@@ -132,14 +132,14 @@ TEST(LoadSceneFeatures, TexturesAreLoadedOnceAndMissingOnesNameWhereItLooked) {
 }
 
 TEST(LoadSceneFeatures, FeaturesListWhatTheSceneUses) {
-    const Scene plain = load_members(R"("materials": {"m": {}},
+    const SceneData plain = load_members(R"("materials": {"m": {}},
         "objects": [{"shape": "sphere", "radius": 1, "material": "m"}],
         "lights": [{"type": "point", "position": [0, 5, 0]}])");
     const uint32_t f = scene_features(plain);
     EXPECT_EQ(f & kernel_features_all, 0u);
     EXPECT_NE(f & feature_point_lights, 0u);
     EXPECT_NE(f & feature_analytic_shapes, 0u);
-    const Scene rich = load_members(R"("materials": {"g": {"refraction": {}},
+    const SceneData rich = load_members(R"("materials": {"g": {"refraction": {}},
                                              "s": {"model": "glossy-phong"}},
         "lights": [{"type": "disk", "center": [0, 3, 0], "normal": [0, -1, 0], "radius": 1}])");
     const uint32_t r = scene_features(rich);

@@ -67,7 +67,7 @@ vec3 apply(const mat4& m, vec3 p) { return vec3(m * glm::vec4(p, 1.0f)); }
 // Good scenes
 
 TEST(LoadScene, ReadsEveryShapeKind) {
-    Scene s = load_scene_from_string(scene_with(R"(
+    SceneData s = load_scene_from_string(scene_with(R"(
         "materials": {"m": {}},
         "objects": [
           {"shape": "sphere", "center": [1, 2, 3], "radius": 0.5, "material": "m"},
@@ -76,7 +76,7 @@ TEST(LoadScene, ReadsEveryShapeKind) {
           {"shape": "plane", "point": [0, -1.5, 0], "normal": [0, 2, 0], "material": "m"},
           {"shape": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0.5]], "material": "m"}
         ])"),
-                                     "scenes/good.json");
+                                         "scenes/good.json");
     ASSERT_EQ(s.objects.size(), 5u);
     const ShapeKind kinds[] = {ShapeKind::sphere, ShapeKind::box, ShapeKind::cylinder,
                                ShapeKind::plane, ShapeKind::triangle};
@@ -105,11 +105,11 @@ TEST(LoadScene, ReadsEveryShapeKind) {
 }
 
 TEST(LoadScene, AppliesTheDefaultsOfSceneH) {
-    Scene s = load_scene_from_string(scene_with(R"(
+    SceneData s = load_scene_from_string(scene_with(R"(
         "materials": {"plain": {}},
         "objects": [{"shape": "sphere", "radius": 1}],
         "lights": [{"type": "point", "position": [1, 2, 3]}])"),
-                                     "x.json");
+                                         "x.json");
     const Camera camera_defaults;
     EXPECT_EQ(s.camera.up, camera_defaults.up);
     EXPECT_EQ(s.camera.fov_axis, FovAxis::vertical);
@@ -144,7 +144,7 @@ TEST(LoadScene, AppliesTheDefaultsOfSceneH) {
 
 TEST(LoadScene, ReadsTheWholeCameraWithEitherFovAxis) {
     for (const char* axis : {"vertical", "horizontal"}) {
-        Scene s = load_scene_from_string(
+        SceneData s = load_scene_from_string(
             std::string(R"({"version": 1, "description": "camera test", "camera": {
                 "position": [1, 2, 3], "look_at": [1, 2, 10], "up": [0, 2, 0], "fov_deg": 90,
                 "fov_axis": ")") +
@@ -166,14 +166,14 @@ TEST(LoadScene, ReadsTheWholeCameraWithEitherFovAxis) {
 }
 
 TEST(LoadScene, KeepsMaterialsInFileOrder) {
-    Scene s = load_scene_from_string(scene_with(R"(
+    SceneData s = load_scene_from_string(scene_with(R"(
         "materials": {
           "zinc": {"c_d": [0.1, 0.2, 0.3], "k_d": 0.45, "k_a": 0.1, "c_s": [0.4, 0.5, 0.6],
                    "k_s": 0.45, "exponent": 50},
           "apple": {"k_d": 0.2}},
         "objects": [{"shape": "sphere", "radius": 1, "material": "apple"},
                     {"shape": "sphere", "radius": 1, "material": "zinc"}])"),
-                                     "m.json");
+                                         "m.json");
     ASSERT_EQ(s.materials.size(), 2u);
     EXPECT_EQ(s.materials[0].name, "zinc");
     EXPECT_EQ(s.materials[0].c_d, vec3(0.1f, 0.2f, 0.3f));
@@ -189,11 +189,11 @@ TEST(LoadScene, KeepsMaterialsInFileOrder) {
 }
 
 TEST(LoadScene, ReadsLightsAndNormalisesDirections) {
-    Scene s = load_scene_from_string(scene_with(R"("lights": [
+    SceneData s = load_scene_from_string(scene_with(R"("lights": [
         {"type": "directional", "direction": [1, 1, -1], "color": [1, 0, 0], "intensity": 0.5,
          "shadows": false},
         {"type": "point", "position": [0, 5, 2], "color": [0.5, 0.6, 0.7], "intensity": 30}])"),
-                                     "l.json");
+                                         "l.json");
     ASSERT_EQ(s.lights.size(), 2u);
     const Light& d = s.lights[0];
     EXPECT_EQ(d.kind, LightKind::directional);
@@ -212,11 +212,11 @@ TEST(LoadScene, ReadsLightsAndNormalisesDirections) {
 }
 
 TEST(LoadScene, AppliesScaleThenRotationThenTranslation) {
-    Scene s = load_scene_from_string(scene_with(R"("objects": [
+    SceneData s = load_scene_from_string(scene_with(R"("objects": [
         {"shape": "sphere", "radius": 1, "transform": {"translate": [10, 20, 30],
          "rotate": [{"axis": "z", "deg": 90}], "scale": [2, 3, 4]}},
         {"shape": "sphere", "radius": 1, "transform": {"scale": 2}}])"),
-                                     "t.json");
+                                         "t.json");
     const Object& o = s.objects[0];
     EXPECT_TRUE(o.has_transform);
     // (1, 2, 3) -> scale (2, 6, 12) -> Rz(90): (x, y, z) -> (-y, x, z) = (-6, 2, 12) -> + t.
@@ -226,10 +226,10 @@ TEST(LoadScene, AppliesScaleThenRotationThenTranslation) {
 }
 
 TEST(LoadScene, ReadsTheRotateListAsAProductLastAppliedFirst) {
-    Scene s = load_scene_from_string(scene_with(R"("objects": [
+    SceneData s = load_scene_from_string(scene_with(R"("objects": [
         {"shape": "sphere", "radius": 1, "transform": {"rotate": [
            {"axis": "z", "deg": 90}, {"axis": "y", "deg": -75}]}}])"),
-                                     "r.json");
+                                         "r.json");
     // Ry(-75) maps +x to (cos 75, 0, sin 75); then Rz(90) maps (x, y, z) to (-y, x, z).
     double c = std::cos(75.0 * M_PI / 180.0), sn = std::sin(75.0 * M_PI / 180.0);
     expect_vec3_near(apply(s.objects[0].world_from_object, vec3(1, 0, 0)),
@@ -237,18 +237,18 @@ TEST(LoadScene, ReadsTheRotateListAsAProductLastAppliedFirst) {
 }
 
 TEST(LoadScene, ReadsRotateDegAsXThenYThenZ) {
-    Scene s = load_scene_from_string(scene_with(R"("objects": [
+    SceneData s = load_scene_from_string(scene_with(R"("objects": [
         {"shape": "sphere", "radius": 1, "transform": {"rotate_deg": [90, 90, 0]}}])"),
-                                     "r.json");
+                                         "r.json");
     // Rx(90) maps +y to +z, then Ry(90) maps +z to +x. (The other order would give +z.)
     expect_vec3_near(apply(s.objects[0].world_from_object, vec3(0, 1, 0)), vec3(1, 0, 0), 1e-6f);
 }
 
 TEST(LoadScene, ReportsAnExplicitIdentityTransformAsNone) {
-    Scene s = load_scene_from_string(scene_with(R"("objects": [
+    SceneData s = load_scene_from_string(scene_with(R"("objects": [
         {"shape": "box", "min": [0, 0, 0], "max": [1, 1, 1], "transform": {"scale": 1,
          "translate": [0, 0, 0], "rotate": []}}])"),
-                                     "i.json");
+                                         "i.json");
     EXPECT_FALSE(s.objects[0].has_transform);
 }
 
@@ -522,7 +522,7 @@ TEST(LoadScene, FitsThenTransformsAndBakesMeshes) {
          "transform": {"translate": [10, 0, 0]}},
         {"shape": "mesh", "file": "quad.obj", "fit": {"scale": 2}},
         {"shape": "mesh", "file": "quad.obj"}])"));
-    Scene s = load_scene((dir.path / "s.json").string());
+    SceneData s = load_scene((dir.path / "s.json").string());
     ASSERT_EQ(s.meshes.size(), 3u);
     ASSERT_EQ(s.objects.size(), 3u);
     for (size_t i = 0; i < 3; ++i) {
@@ -532,16 +532,16 @@ TEST(LoadScene, FitsThenTransformsAndBakesMeshes) {
         EXPECT_EQ(s.meshes[i].triangle_count(), 2u);
     }
     EXPECT_EQ(count_triangles(s), 6u);
-    // Bounds x 0..4, y 0..2, z -2..0: bottom centre (2, 0, -1). Mesh 0: scale 1/4, +(0, 0.5, 0),
-    // then +(10, 0, 0).
-    const Mesh& a = s.meshes[0];
+    // Bounds x 0..4, y 0..2, z -2..0: bottom centre (2, 0, -1). MeshData 0: scale 1/4, +(0, 0.5,
+    // 0), then +(10, 0, 0).
+    const MeshData& a = s.meshes[0];
     ASSERT_EQ(a.positions.size(), 4u);
     expect_vec3_near(a.positions[0], vec3(9.5f, 0.5f, 0.25f), 1e-6f);
     expect_vec3_near(a.positions[2], vec3(10.5f, 1.0f, 0.25f), 1e-6f);
     expect_vec3_near(a.positions[3], vec3(9.5f, 1.0f, -0.25f), 1e-6f);
-    // Mesh 1: scale 2 about the bottom centre.
+    // MeshData 1: scale 2 about the bottom centre.
     expect_vec3_near(s.meshes[1].positions[1], vec3(4, 0, 2), 1e-6f);
-    // Mesh 2: unchanged.
+    // MeshData 2: unchanged.
     EXPECT_EQ(s.meshes[2].positions[3], vec3(0, 2, -2));
     // Uniform positive scale and translation leave normals as they are.
     ASSERT_FALSE(a.normals.empty());
@@ -558,7 +558,7 @@ TEST(LoadScene, GivesEveryObjectOfAFileTheWholeMesh) {
         {"shape": "mesh", "file": "./quad.obj"},
         {"shape": "mesh", "file": "quad.obj", "transform": {"translate": [1, 0, 0]}},
         {"shape": "mesh", "file": "./quad.obj"}])"));
-    Scene s = load_scene((dir.path / "s.json").string());
+    SceneData s = load_scene((dir.path / "s.json").string());
     ASSERT_EQ(s.meshes.size(), 4u);
     for (size_t i = 0; i < 4; ++i) {
         ASSERT_EQ(s.meshes[i].positions.size(), 4u) << i;
@@ -624,7 +624,7 @@ TEST(LoadScene, PassesABrokenMeshFilesErrorThrough) {
 const std::string scenes_dir = RAYLANE_SOURCE_DIR "/scenes";
 
 TEST(SceneFiles, BuiltinJsonLoadsWithoutAModel) {
-    Scene s = load_scene(scenes_dir + "/builtin.json");
+    SceneData s = load_scene(scenes_dir + "/builtin.json");
     EXPECT_TRUE(s.meshes.empty());
     EXPECT_EQ(count_triangles(s), 1u);
     EXPECT_EQ(s.lights.size(), 2u);
@@ -640,7 +640,7 @@ TEST(SceneFiles, TheExampleOfTheFormatDocumentLoads) {
     ASSERT_NE(end, std::string::npos);
     if (!model_available("dragon.ply", scenes_dir))
         RAYLANE_MODEL_MISSING() << "dragon.ply not found";
-    Scene s = load_scene_from_string(text.substr(begin, end - begin), scenes_dir + "/doc.json");
+    SceneData s = load_scene_from_string(text.substr(begin, end - begin), scenes_dir + "/doc.json");
     EXPECT_EQ(s.objects.size(), 6u);
     EXPECT_EQ(s.lights.size(), 2u);
 }
@@ -655,7 +655,7 @@ vec3 undo_ty(vec3 p, vec3 translate, double deg) {
 TEST(SceneFiles, DragonIsNormalisedAsInTheReport) {
     if (!model_available("dragon.ply", scenes_dir))
         RAYLANE_MODEL_MISSING() << "dragon.ply not found";
-    Scene s = load_scene(scenes_dir + "/dragon.json");
+    SceneData s = load_scene(scenes_dir + "/dragon.json");
     ASSERT_EQ(s.meshes.size(), 1u);
     EXPECT_EQ(count_triangles(s), 100000u);
     EXPECT_EQ(s.camera.width, 1920);
@@ -677,7 +677,7 @@ TEST(SceneFiles, DragonIsNormalisedAsInTheReport) {
 
 TEST(SceneFiles, BunnySitsOnTheFloorAsInTheReport) {
     if (!model_available("bunny.ply", scenes_dir)) RAYLANE_MODEL_MISSING() << "bunny.ply not found";
-    Scene s = load_scene(scenes_dir + "/bunny.json");
+    SceneData s = load_scene(scenes_dir + "/bunny.json");
     ASSERT_EQ(s.meshes.size(), 1u);
     EXPECT_EQ(count_triangles(s), 69451u);
     ASSERT_EQ(s.planes.size(), 1u);

@@ -55,7 +55,7 @@ TEST(ModelScene, RecognisesModelsByExtension) {
 TEST(ModelScene, PutsTheModelOnTheFloorInFrameWithTwoShadowedLights) {
     TempDir dir("raylane_model_scene_");
     write_file(dir.path / "box.obj", box_obj({-3.0, 5.0, 1.0}, {-1.0, 6.0, 4.0}, 1.0));
-    const Scene scene = load_model_scene((dir.path / "box.obj").string());
+    const SceneData scene = load_model_scene((dir.path / "box.obj").string());
     ASSERT_EQ(scene.meshes.size(), 1u);
     ASSERT_EQ(scene.planes.size(), 1u);
     const Aabb b = mesh_bounds(scene.meshes[0]);
@@ -92,8 +92,8 @@ TEST(ModelScene, IsInTheModelsOwnUnits) {
     TempDir dir("raylane_model_scene_");
     write_file(dir.path / "m.obj", box_obj({0.0, 0.0, 0.0}, {1.0, 2.0, 0.5}, 1.0));
     write_file(dir.path / "mm.obj", box_obj({0.0, 0.0, 0.0}, {1.0, 2.0, 0.5}, 1000.0));
-    const Scene m = load_model_scene((dir.path / "m.obj").string());
-    const Scene mm = load_model_scene((dir.path / "mm.obj").string());
+    const SceneData m = load_model_scene((dir.path / "m.obj").string());
+    const SceneData mm = load_model_scene((dir.path / "mm.obj").string());
     const glm::dvec3 cm = glm::dvec3(mesh_bounds(m.meshes[0]).center());
     const glm::dvec3 cmm = glm::dvec3(mesh_bounds(mm.meshes[0]).center());
     const double eye_m = glm::length(glm::dvec3(m.camera.position) - cm);

@@ -49,7 +49,7 @@ std::string scene_json(const std::string& materials, const std::string& object_k
 TEST(ObjMaterials, LoadObjGivesEachFaceItsMaterial) {
     TempDir dir("raylane_objmat_");
     write_file(dir.path / "quads.obj", quads_obj("lib one.mtl two.mtl"));
-    const Mesh m = load_obj((dir.path / "quads.obj").string());
+    const MeshData m = load_obj((dir.path / "quads.obj").string());
     EXPECT_EQ(m.material_libraries, (std::vector<std::string>{"lib", "one.mtl", "two.mtl"}));
     // red, blue, then "" (the faces before any usemtl and after the bare one)
     ASSERT_EQ(m.material_names, (std::vector<std::string>{"red", "blue", ""}));
@@ -61,7 +61,7 @@ TEST(ObjMaterials, TheSceneSplitsTheModelByItsMtlMaterials) {
     write_file(dir.path / "quads.obj", quads_obj("quads.mtl"));
     write_file(dir.path / "quads.mtl",
                "newmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 50\nnewmtl blue\r\nKd 0 0 1\r\n");
-    const Scene s = load_scene_from_string(scene_json(""), (dir.path / "s.json").string());
+    const SceneData s = load_scene_from_string(scene_json(""), (dir.path / "s.json").string());
     ASSERT_EQ(s.objects.size(), 3u);  // red, blue, and the default
     auto material_of = [&](size_t o) { return s.materials[s.objects[o].material]; };
     EXPECT_EQ(material_of(0).name, "red");
@@ -78,8 +78,8 @@ TEST(ObjMaterials, TheScenesMaterialOfTheSameNameOverridesTheModels) {
     TempDir dir("raylane_objmat_");
     write_file(dir.path / "quads.obj", quads_obj("quads.mtl"));
     write_file(dir.path / "quads.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n");
-    const Scene s = load_scene_from_string(scene_json(R"(, "red": {"c_d": [0, 1, 0]})"),
-                                           (dir.path / "s.json").string());
+    const SceneData s = load_scene_from_string(scene_json(R"(, "red": {"c_d": [0, 1, 0]})"),
+                                               (dir.path / "s.json").string());
     EXPECT_EQ(s.materials[s.objects[0].material].c_d, vec3(0, 1, 0));
     EXPECT_EQ(s.materials[s.objects[1].material].c_d, vec3(0, 0, 1));
 }
@@ -88,7 +88,7 @@ TEST(ObjMaterials, AnObjectThatNamesItsMaterialGivesItToEveryFace) {
     TempDir dir("raylane_objmat_");
     write_file(dir.path / "quads.obj", quads_obj("quads.mtl"));
     write_file(dir.path / "quads.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n");
-    const Scene s = load_scene_from_string(
+    const SceneData s = load_scene_from_string(
         scene_json(R"(, "mine": {"c_d": [0, 1, 0]})", R"(, "material": "mine")"),
         (dir.path / "s.json").string());
     ASSERT_EQ(s.objects.size(), 1u);
@@ -101,7 +101,7 @@ TEST(ObjMaterials, AMissingLibraryOrMaterialWarnsAndUsesTheDefaultMaterial) {
     TempDir dir("raylane_objmat_");
     write_file(dir.path / "quads.obj", quads_obj("missing.mtl"));
     const std::string scene = (dir.path / "s.json").string();
-    const Scene s = load_scene_from_string(scene_json(""), scene);
+    const SceneData s = load_scene_from_string(scene_json(""), scene);
     ASSERT_EQ(s.objects.size(), 3u);
     for (const Object& o : s.objects) EXPECT_EQ(s.materials[o.material].name, "default");
     // one line for the library, one per material it should have held
@@ -111,7 +111,7 @@ TEST(ObjMaterials, AMissingLibraryOrMaterialWarnsAndUsesTheDefaultMaterial) {
     EXPECT_NE(s.warnings[1].find("material red is in none of its libraries"), std::string::npos)
         << s.warnings[1];
     write_file(dir.path / "missing.mtl", "newmtl red\nKd 1 0 0\nd 0.5\n");
-    const Scene t = load_scene_from_string(scene_json(""), scene);
+    const SceneData t = load_scene_from_string(scene_json(""), scene);
     EXPECT_EQ(t.materials[t.objects[0].material].name, "red");
     EXPECT_EQ(t.materials[t.objects[1].material].name, "default");  // blue is undefined
     ASSERT_EQ(t.warnings.size(), 2u);
@@ -131,7 +131,7 @@ TEST(ObjMaterials, TexturesAndNormalMapsAreFoundNextToTheLibraryWithWindowsSepar
     std::filesystem::create_directories(dir.path / "mat" / "tex");
     write_png((dir.path / "mat" / "tex" / "red.png").string(), red, Encoding::srgb);
     write_png((dir.path / "mat" / "tex" / "flat.png").string(), flat, Encoding::linear);
-    const Scene s = load_scene_from_string(scene_json(""), (dir.path / "s.json").string());
+    const SceneData s = load_scene_from_string(scene_json(""), (dir.path / "s.json").string());
     const Material& m = s.materials[s.objects[0].material];
     EXPECT_GE(m.texture, 0);
     EXPECT_GE(m.normal_map, 0);

@@ -163,8 +163,8 @@ TYPED_TEST(BeerGridPacket, MatchesTheScalarOnTheWholeGrid) {
 
 /// A glass sphere of index 1 (no bending, R = 0) with filter (0.5, 1, 0): sigma = ln 2, 0 and
 /// infinity per channel. Background L everywhere. Camera at distance 4, 33 x 33 pixels.
-Scene absorbing_sphere() {
-    Scene s;
+SceneData absorbing_sphere() {
+    SceneData s;
     s.camera.position = vec3(0.0f, 0.0f, -4.0f);
     s.camera.look_at = vec3(0.0f);
     s.camera.fov_deg = 34.0f;
@@ -187,7 +187,7 @@ Scene absorbing_sphere() {
 /// double, within the offset's effect on the chord. Pixels whose chord is under 0.05 (the
 /// silhouette, where the chord's slope is unbounded) only have to lie in [0, L]; the clear channel
 /// is L exactly everywhere.
-void expect_absorbing_sphere(const Scene& s, const RenderResult& r, const std::string& path) {
+void expect_absorbing_sphere(const SceneData& s, const RenderResult& r, const std::string& path) {
     EXPECT_EQ(r.stats.bad_samples(), 0u) << path;
     const CameraFrame frame = make_camera_frame(s.camera);
     const double l = s.background.x;
@@ -221,14 +221,14 @@ void expect_absorbing_sphere(const Scene& s, const RenderResult& r, const std::s
 }
 
 TEST(BeerRender, IndexMatchedAbsorbingSphereTransmitsFilterToTheChordLength) {
-    const Scene s = absorbing_sphere();
+    const SceneData s = absorbing_sphere();
     const Accel accel = build_accel(s, BuildParams{});
     expect_absorbing_sphere(s, render_scalar(s, accel, RenderParams{}), "scalar");
 }
 
 TYPED_TEST(BeerGridPacket, IndexMatchedAbsorbingSphereTransmitsFilterToTheChordLength) {
     constexpr int W = TypeParam::value;
-    const Scene s = absorbing_sphere();
+    const SceneData s = absorbing_sphere();
     const Accel accel = build_accel(s, BuildParams{});
     const RenderResult packet = render_packet_width<W>(s, accel, RenderParams{});
     expect_absorbing_sphere(s, packet, "packet W=" + std::to_string(W));

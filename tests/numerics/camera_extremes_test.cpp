@@ -148,7 +148,7 @@ std::string scene_json(const std::string& camera_extra) {
 /// The loader rejects a fov of 0 or 180 (and beyond, and values that round to them in float),
 /// a negative lens radius and a focal distance <= 0, each with one line naming the value.
 TEST(CameraExtremes, LoaderRejectsInvalidFieldOfViewAndLens) {
-    const Scene ok = load_scene_from_string(
+    const SceneData ok = load_scene_from_string(
         scene_json(R"(, "fov_deg": 179, "lens_radius": 0, "focal_distance": 1e-3)"), "ok.json");
     EXPECT_EQ(ok.camera.fov_deg, 179.0f);
     EXPECT_EQ(ok.camera.lens_radius, 0.0f);

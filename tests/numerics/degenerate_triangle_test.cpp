@@ -68,8 +68,8 @@ end_header
 
 /// The same five faces built directly (every face kept, whatever the loaders drop), for the
 /// intersection and rendering tests.
-Mesh degenerate_mesh() {
-    Mesh m;
+MeshData degenerate_mesh() {
+    MeshData m;
     m.name = "degenerate";
     m.positions = {{-1, 0, 0},    {1, 0, 0},     {0, 0, 4e-20f}, {0.2f, 0, 0.2f}, {-1, -0.5f, 0},
                    {0, -0.5f, 0}, {1, -0.5f, 0}, {-4, -1, -4},   {4, -1, -4},     {0, -1, 4}};
@@ -77,7 +77,7 @@ Mesh degenerate_mesh() {
     return m;
 }
 
-bool has_zero_area(const Mesh& m) {
+bool has_zero_area(const MeshData& m) {
     for (uvec3 t : m.tris)
         if (is_zero_area_triangle(m.positions[t.x], m.positions[t.y], m.positions[t.z]))
             return true;
@@ -117,10 +117,10 @@ TEST(DegenerateTriangle, LoadersRejectNaNAndInfiniteVertices) {
 /// numerics.md §8: zero-area triangles (cross product exactly zero, in double) are dropped at
 /// load time; the sliver is not zero-area and stays. Expected: faces 1 and 4 only.
 TEST(DegenerateTriangle, LoadersDropZeroAreaTriangles) {
-    const Mesh obj = load_obj_from_memory(degenerate_obj, "degenerate.obj");
+    const MeshData obj = load_obj_from_memory(degenerate_obj, "degenerate.obj");
     EXPECT_FALSE(has_zero_area(obj)) << "load_obj keeps zero-area triangles";
     EXPECT_EQ(obj.tris.size(), 2u);
-    const Mesh ply = load_ply_from_memory(degenerate_ply, "degenerate.ply");
+    const MeshData ply = load_ply_from_memory(degenerate_ply, "degenerate.ply");
     EXPECT_FALSE(has_zero_area(ply)) << "load_ply keeps zero-area triangles";
     EXPECT_EQ(ply.tris.size(), 2u);
 }
@@ -131,7 +131,7 @@ TEST(DegenerateTriangle, LoadersDropZeroAreaTriangles) {
 TEST(DegenerateTriangle, ZeroAreaTrianglesAreNeverHit) {
     for (float shift : {0.0f, 1e5f}) {
         SCOPED_TRACE("shifted by " + std::to_string(shift));
-        Mesh m = degenerate_mesh();
+        MeshData m = degenerate_mesh();
         for (vec3& p : m.positions) p += vec3(shift);
         const std::vector<uint32_t> zero_area = {1, 2, 4};
         for (uint32_t k : zero_area) {
@@ -170,7 +170,7 @@ TEST(DegenerateTriangle, ZeroAreaTrianglesAreNeverHit) {
             }
         }
         EXPECT_EQ(hits, 0u) << "degenerate triangles reported as hit";
-        const Scene scene = make_mesh_scene({m});
+        const SceneData scene = make_mesh_scene({m});
         const Accel accel = build_accel(scene, BuildParams{1});
         std::vector<Hit> scalar;
         size_t degenerate_hits = 0;
@@ -192,7 +192,7 @@ TEST(DegenerateTriangle, ZeroAreaTrianglesAreNeverHit) {
 /// and barycentrics in [0, 1], and its geometric normal (geometry_triangle, as surface_at uses it)
 /// is a finite unit vector although |cross| ^ 2 = 6.4e-39 is below the smallest normal float.
 TEST(DegenerateTriangle, SliversGiveFiniteHitsAndNormals) {
-    const Mesh m = degenerate_mesh();
+    const MeshData m = degenerate_mesh();
     const uvec3 t = m.tris[0];
     const vec3 a = m.positions[t.x], b = m.positions[t.y], c = m.positions[t.z];
     ASSERT_FALSE(is_zero_area_triangle(a, b, c));
@@ -203,7 +203,7 @@ TEST(DegenerateTriangle, SliversGiveFiniteHitsAndNormals) {
             {vec3(x, 3.0f, 1e-20f * (1.0f - std::fabs(x))), vec3(0.0f, -1.0f, 0.0f)});  // inside
     }
     size_t hits = 0, bad_values = 0, bad_normals = 0;
-    const Scene scene = make_mesh_scene({m});
+    const SceneData scene = make_mesh_scene({m});
     const Accel accel = build_accel(scene, BuildParams{});
     for (const Ray& r : rays) {
         float th, u, v;
@@ -242,7 +242,7 @@ TEST(DegenerateTriangle, MedianBuildTerminatesOnIdenticalCentroids) {
 /// infinite sample, a finite image, and the pixels that see the sliver are lit like the rest
 /// (a NaN normal would make them silently black: every comparison with NaN is false).
 TEST(DegenerateTriangle, RenderingProducesNoNaN) {
-    Scene scene = make_mesh_scene({degenerate_mesh()});
+    SceneData scene = make_mesh_scene({degenerate_mesh()});
     scene.camera.position = vec3(0.0f, 5.0f, 0.0f);
     scene.camera.look_at = vec3(0.0f, 0.0f, 0.0f);
     scene.camera.up = vec3(0.0f, 0.0f, 1.0f);

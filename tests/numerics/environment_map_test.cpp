@@ -211,8 +211,8 @@ TYPED_TEST(EnvironmentMapExtremesPacket, MatchesTheScalarBitForBitWithGarbageIna
 
 /// A constant environment of radiance L (4 x 2, bilinear: the seam and the poles are blended
 /// like any other texel), one convex object, no light.
-Scene furnace(const Material& m, ShapeKind kind) {
-    Scene s;
+SceneData furnace(const Material& m, ShapeKind kind) {
+    SceneData s;
     s.camera.position = vec3(0.3f, 0.2f, -4.0f);
     s.camera.look_at = vec3(0.0f);
     s.camera.fov_deg = 36.0f;
@@ -273,7 +273,7 @@ double fresnel_exact(double ci, double eta) {
 /// ray out when R < 1/2, which ends the series at L (1 - (1 - R) R^F); the reflection inside when
 /// R >= 1/2, which then never leaves (black at D): L (1 - (1 - R) R^(F - 1)).
 /// Silhouette pixels (cos_i < 0.05), where R's slope is large, are left out.
-void expect_glass_furnace(const Scene& s, const RenderResult& r, const std::string& path) {
+void expect_glass_furnace(const SceneData& s, const RenderResult& r, const std::string& path) {
     EXPECT_EQ(r.stats.bad_samples(), 0u) << path;
     const CameraFrame frame = make_camera_frame(s.camera);
     const double l = 0.7, eta = s.materials[0].ior;
@@ -314,14 +314,14 @@ void expect_glass_furnace(const Scene& s, const RenderResult& r, const std::stri
                 path.c_str(), eta, depth, darkest, worst);
 }
 
-std::vector<Scene> glass_furnaces() {
-    std::vector<Scene> out;
+std::vector<SceneData> glass_furnaces() {
+    std::vector<SceneData> out;
     for (float eta : {1.5f, 4.0f}) {
         for (int depth : {4, 64}) {
             Material m;
             m.refractive = true;
             m.ior = eta;
-            Scene s = furnace(m, ShapeKind::sphere);
+            SceneData s = furnace(m, ShapeKind::sphere);
             s.shading.max_refraction_depth = depth;
             out.push_back(s);
         }
@@ -332,27 +332,27 @@ std::vector<Scene> glass_furnaces() {
 template <class Render>
 void check_furnaces(Render render, const std::string& path) {
     for (ShapeKind kind : {ShapeKind::sphere, ShapeKind::box, ShapeKind::cylinder}) {
-        const Scene s = furnace(mirror_material(), kind);
+        const SceneData s = furnace(mirror_material(), kind);
         const char* shape = kind == ShapeKind::sphere ? " mirror sphere"
                             : kind == ShapeKind::box  ? " mirror box"
                                                       : " mirror cylinder";
         expect_mirror_furnace(render(s, build_accel(s, BuildParams{})), path + shape);
     }
-    for (const Scene& s : glass_furnaces())
+    for (const SceneData& s : glass_furnaces())
         expect_glass_furnace(s, render(s, build_accel(s, BuildParams{})), path);
 }
 
 TEST(EnvironmentMapExtremes, FurnacesShowTheEnvironmentsRadiance) {
     check_furnaces(
-        [](const Scene& s, const Accel& a) { return render_scalar(s, a, RenderParams{}); },
+        [](const SceneData& s, const Accel& a) { return render_scalar(s, a, RenderParams{}); },
         "scalar");
 }
 
 TYPED_TEST(EnvironmentMapExtremesPacket, FurnacesShowTheEnvironmentsRadiance) {
     constexpr int W = TypeParam::value;
-    check_furnaces(
-        [](const Scene& s, const Accel& a) { return render_packet_width<W>(s, a, RenderParams{}); },
-        "packet W=" + std::to_string(W));
+    check_furnaces([](const SceneData& s,
+                      const Accel& a) { return render_packet_width<W>(s, a, RenderParams{}); },
+                   "packet W=" + std::to_string(W));
 }
 
 }  // namespace

@@ -51,7 +51,7 @@ std::string bunny_json(double shift) {
 }
 
 /// Per pixel: (object, primitive) of the primary hit.
-std::vector<std::pair<uint32_t, uint32_t>> primary_ids(const Scene& scene, const Accel& accel,
+std::vector<std::pair<uint32_t, uint32_t>> primary_ids(const SceneData& scene, const Accel& accel,
                                                        std::vector<Ray>* rays = nullptr) {
     const CameraFrame f = make_camera_frame(scene.camera);
     std::vector<std::pair<uint32_t, uint32_t>> ids;
@@ -72,7 +72,7 @@ std::vector<std::pair<uint32_t, uint32_t>> primary_ids(const Scene& scene, const
 /// printed.
 TEST(FarFromOrigin, TranslatedBunnyRendersLikeTheBunnyAtHome) {
     const std::string where = std::string(RAYLANE_SOURCE_DIR) + "/scenes/far_bunny.json";
-    Scene home, far;
+    SceneData home, far;
     try {
         home = load_scene_from_string(bunny_json(0.0), where);
         far = load_scene_from_string(bunny_json(1e5), where);
@@ -164,7 +164,7 @@ struct FarCameraScene {
 /// paths. Left where it is, the scene would hold its shapes in floats spaced 1/128 to 1/32 apart.
 TEST(FarFromOrigin, CameraLookingFarAwayKeepsTheDepthsNearIt) {
     const FarCameraScene fs;
-    const Scene scene = load_scene_from_string(fs.json(), "far_camera.json");
+    const SceneData scene = load_scene_from_string(fs.json(), "far_camera.json");
     const Accel accel = build_accel(scene, BuildParams{});
     const CameraFrame frame = make_camera_frame(scene.camera);
     std::vector<Ray> rays;
@@ -205,7 +205,7 @@ TEST(FarFromOrigin, CameraLookingFarAwayKeepsTheDepthsNearIt) {
 TEST(FarFromOrigin, BarycentricHitPointsStayOnFarTriangles) {
     std::mt19937 rng(21);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-    Mesh m;
+    MeshData m;
     m.name = "far triangles";
     const vec3 base(1e5f);
     for (uint32_t k = 0; k < 64; ++k) {
@@ -214,7 +214,7 @@ TEST(FarFromOrigin, BarycentricHitPointsStayOnFarTriangles) {
             m.positions.push_back(c + vec3(unit(rng), unit(rng), unit(rng)));
         m.tris.push_back({3 * k, 3 * k + 1, 3 * k + 2});
     }
-    const Scene scene = make_mesh_scene({m});
+    const SceneData scene = make_mesh_scene({m});
     const Accel accel = build_accel(scene, BuildParams{});
     std::vector<Ray> rays;
     std::uniform_real_distribution<float> s01(0.0f, 1.0f);
@@ -295,7 +295,7 @@ TEST(FarFromOrigin, BarycentricHitPointsStayOnFarTriangles) {
 /// force does on a subset of rays aimed at random triangles, in both paths.
 TEST(FarFromOrigin, ExponentiallySpacedCentroidsDoNotOverflowTheTraversalStack) {
     const uint32_t n = sanitized ? 50000 : 1000000;
-    Mesh m;
+    MeshData m;
     m.name = "exponential";
     m.positions.reserve(3 * size_t(n));
     for (uint32_t i = 0; i < n; ++i) {
@@ -308,7 +308,7 @@ TEST(FarFromOrigin, ExponentiallySpacedCentroidsDoNotOverflowTheTraversalStack) 
         m.positions.push_back(p + vec3(0.0f, s, 0.0f));
         m.tris.push_back({3 * i, 3 * i + 1, 3 * i + 2});
     }
-    const Scene scene = make_mesh_scene({m});
+    const SceneData scene = make_mesh_scene({m});
     const Accel accel = build_accel(scene, BuildParams{4});
     const BvhStats st = compute_stats(accel.meshes[0].bvh);
     const int bound = int(std::ceil(std::log2(double(n) / 2.0))) + 1;

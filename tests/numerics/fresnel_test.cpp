@@ -278,8 +278,8 @@ TYPED_TEST(FresnelGridPacket, MatchesTheScalarBitForBit) {
 /// internal reflections, so each pixel is the series
 ///   (1 - R)^2 a / (1 - R^2 a^2),  a = filter^(L / cos_t),
 /// R the exact Fresnel reflectance at the pixel ray's incidence (the same at both faces).
-Scene glass_slab(float thickness) {
-    Scene s;
+SceneData glass_slab(float thickness) {
+    SceneData s;
     s.camera.position = vec3(0.0f, 0.0f, -4.0f);
     s.camera.look_at = vec3(0.0f);
     s.camera.fov_deg = 0.5f;
@@ -306,7 +306,7 @@ Scene glass_slab(float thickness) {
     return s;
 }
 
-void expect_slab_series(const Scene& s, const RenderResult& r, const std::string& path) {
+void expect_slab_series(const SceneData& s, const RenderResult& r, const std::string& path) {
     EXPECT_EQ(r.stats.bad_samples(), 0u) << path;
     const CameraFrame frame = make_camera_frame(s.camera);
     const double thickness = s.boxes[0].hi.z, eta = s.materials[0].ior;
@@ -342,14 +342,14 @@ void expect_slab_series(const Scene& s, const RenderResult& r, const std::string
 }
 
 TEST(FresnelSlab, TransmitsTheInfiniteSeriesOfInternalReflections) {
-    const Scene s = glass_slab(0.5f);
+    const SceneData s = glass_slab(0.5f);
     const Accel accel = build_accel(s, BuildParams{});
     expect_slab_series(s, render_scalar(s, accel, RenderParams{}), "scalar");
 }
 
 TYPED_TEST(FresnelGridPacket, SlabTransmitsTheInfiniteSeriesOfInternalReflections) {
     constexpr int W = TypeParam::value;
-    const Scene s = glass_slab(0.5f);
+    const SceneData s = glass_slab(0.5f);
     const Accel accel = build_accel(s, BuildParams{});
     expect_slab_series(s, render_packet_width<W>(s, accel, RenderParams{}),
                        "packet W=" + std::to_string(W));
@@ -360,7 +360,7 @@ TYPED_TEST(FresnelGridPacket, SlabTransmitsTheInfiniteSeriesOfInternalReflection
 /// A camera inside two nested glass boxes, looking at two concentric glass spheres: nearly every
 /// ray meets glass again, so without glass_fork_depth each interaction doubles the rays (this
 /// 2x2 image traced 551,120 glass rays at depth 28, and ran out of memory at depth 64).
-Scene nested_glass(int depth, const std::string& more_shading = "") {
+SceneData nested_glass(int depth, const std::string& more_shading = "") {
     return load_scene_from_string(
         R"({"version": 1,
             "camera": {"position": [0, 1, -5], "look_at": [0, 0.5, 0], "fov_deg": 60,
@@ -386,7 +386,7 @@ uint64_t glass_ray_bound(int depth) {
 
 TEST(FresnelNested, GlassInGlassTracesABoundedTreeAtEveryDepthLimit) {
     for (const int depth : {4, 28, 64}) {
-        const Scene s = nested_glass(depth);
+        const SceneData s = nested_glass(depth);
         const Accel accel = build_accel(s, BuildParams{});
         const RenderResult r = render_scalar(s, accel, RenderParams{});
         const uint64_t rays = r.stats.reflection_rays + r.stats.refraction_rays;
@@ -407,7 +407,7 @@ TYPED_TEST(FresnelGridPacket, NestedGlassTracesTheScalarTree) {
         {28, R"(, "refraction": false)"},
         {28, R"(, "reflected_color": [1, 0, 1])"}};
     for (const auto& [depth, shading] : cases) {
-        const Scene s = nested_glass(depth, shading);
+        const SceneData s = nested_glass(depth, shading);
         const Accel accel = build_accel(s, BuildParams{});
         const RenderResult scalar = render_scalar(s, accel, RenderParams{});
         ASSERT_LE(scalar.stats.reflection_rays + scalar.stats.refraction_rays,

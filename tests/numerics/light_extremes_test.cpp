@@ -153,8 +153,8 @@ TEST(LightExtremes, SamplesOnAndNearLightsAreFiniteOrAbsent) {
 /// floor, one on the sphere's surface, one inside the sphere, a rectangle lying in the floor, a
 /// box light half under the floor, a disc light centred on the sphere's top, and a directional
 /// light grazing the floor.
-Scene lights_on_surfaces() {
-    Scene s;
+SceneData lights_on_surfaces() {
+    SceneData s;
     s.camera.position = vec3(0.0f, 2.0f, -6.0f);
     s.camera.look_at = vec3(0.0f, 0.5f, 0.0f);
     s.camera.fov_deg = 50.0f;
@@ -210,7 +210,7 @@ void expect_finite_image(const RenderResult& r, const std::string& path) {
 }
 
 TEST(LightExtremes, LightsLyingOnAndInsideSurfacesRenderWithoutNaN) {
-    const Scene s = lights_on_surfaces();
+    const SceneData s = lights_on_surfaces();
     const Accel accel = build_accel(s, BuildParams{});
     RenderParams p;
     p.spp = 2;
@@ -223,8 +223,8 @@ TEST(LightExtremes, LightsLyingOnAndInsideSurfacesRenderWithoutNaN) {
 /// gathered from the shadow-ray origin, 2^-16 times the camera ray's reach above the plane
 /// (core/offset.h, near y = 0), which lowers the light by that much: a relative error up to
 /// 3 offset / h, allowed for.
-Scene lit_plane(float h) {
-    Scene s;
+SceneData lit_plane(float h) {
+    SceneData s;
     s.camera.position = vec3(0.0f, 3.0f, 0.0f);
     s.camera.look_at = vec3(0.0f);
     s.camera.up = vec3(0.0f, 0.0f, 1.0f);
@@ -243,7 +243,7 @@ Scene lit_plane(float h) {
     return s;
 }
 
-void expect_irradiance(const Scene& s, const RenderResult& r, const std::string& path) {
+void expect_irradiance(const SceneData& s, const RenderResult& r, const std::string& path) {
     const CameraFrame frame = make_camera_frame(s.camera);
     const double h = s.lights[0].position.y, intensity = s.lights[0].intensity;
     double worst = 0;
@@ -267,7 +267,7 @@ void expect_irradiance(const Scene& s, const RenderResult& r, const std::string&
 
 TEST(LightExtremes, PointLightOverAPlaneGivesTheAnalyticIrradiance) {
     for (float h : {1.0f, 0.01f}) {
-        const Scene s = lit_plane(h);
+        const SceneData s = lit_plane(h);
         expect_irradiance(s, render_scalar(s, build_accel(s, BuildParams{}), RenderParams{}),
                           "scalar");
     }
@@ -327,7 +327,7 @@ TYPED_TEST(LightExtremesPacket, MatchesTheScalarOnAndNearLights) {
 
 TYPED_TEST(LightExtremesPacket, LightsLyingOnAndInsideSurfacesRenderAsTheScalar) {
     constexpr int W = TypeParam::value;
-    const Scene s = lights_on_surfaces();
+    const SceneData s = lights_on_surfaces();
     const Accel accel = build_accel(s, BuildParams{});
     RenderParams p;
     p.spp = 2;
@@ -345,7 +345,7 @@ TYPED_TEST(LightExtremesPacket, LightsLyingOnAndInsideSurfacesRenderAsTheScalar)
 TYPED_TEST(LightExtremesPacket, PointLightOverAPlaneGivesTheAnalyticIrradiance) {
     constexpr int W = TypeParam::value;
     for (float h : {1.0f, 0.01f}) {
-        const Scene s = lit_plane(h);
+        const SceneData s = lit_plane(h);
         expect_irradiance(s,
                           render_packet_width<W>(s, build_accel(s, BuildParams{}), RenderParams{}),
                           "packet W=" + std::to_string(W));

@@ -74,8 +74,8 @@ TYPED_TEST(SampleKindPacket, ClassifiesEveryLaneAsTheScalar) {
 }
 
 /// The built-in scene with one material's diffuse colour NaN (an object of it is in view).
-Scene scene_with_nan_material() {
-    Scene scene = make_builtin_scene();
+SceneData scene_with_nan_material() {
+    SceneData scene = make_builtin_scene();
     scene.camera.height = scene.camera.height * 64 / scene.camera.width;
     scene.camera.width = 64;
     scene.materials.at(0).c_d = vec3(0.5f, nan_f, 0.5f);
@@ -83,7 +83,7 @@ Scene scene_with_nan_material() {
 }
 
 TEST(NanSamples, AreCountedLeftOutAndTheSameInBothPaths) {
-    const Scene scene = scene_with_nan_material();
+    const SceneData scene = scene_with_nan_material();
     const Accel accel = build_accel(scene, BuildParams{});
     RenderParams p;
     p.spp = 3;
@@ -105,7 +105,7 @@ TEST(NanSamples, AreCountedLeftOutAndTheSameInBothPaths) {
 }
 
 TEST(NanSamples, ACleanSceneCountsNone) {
-    Scene scene = make_builtin_scene();
+    SceneData scene = make_builtin_scene();
     scene.camera.height = scene.camera.height * 64 / scene.camera.width;
     scene.camera.width = 64;
     const Accel accel = build_accel(scene, BuildParams{});

@@ -163,15 +163,15 @@ TEST(NormalMapFrame, EightyNineDegreeTexelsGiveUnitNormalsAboveTheSurface) {
 /// the floor: view elevations from about 1 to 10 degrees. `mirror`: a perfect angle-independent
 /// mirror under a constant background L and no light; otherwise white diffuse under a
 /// directional light straight above.
-Scene floor_scene(bool mapped, bool mirror) {
-    Scene s;
+SceneData floor_scene(bool mapped, bool mirror) {
+    SceneData s;
     s.camera.position = vec3(0.0f, 0.3f, -9.0f);
     s.camera.look_at = vec3(0.0f, 0.0f, 0.0f);
     s.camera.fov_deg = 30.0f;
     s.camera.width = 48;
     s.camera.height = 32;
     s.background = mirror ? vec3(0.6f) : vec3(0.0f);
-    Mesh m;
+    MeshData m;
     m.positions = {{-10, 0, -10}, {10, 0, -10}, {10, 0, 10}, {-10, 0, 10}};
     m.uvs = {{0, 0}, {8, 0}, {8, 8}, {0, 8}};
     m.tris = {{0, 2, 1}, {0, 3, 2}};  // (p2 - p0) x (p1 - p0) = +y
@@ -232,7 +232,7 @@ void expect_clean(const RenderResult& r, float most, const std::string& what) {
 /// negative. The render is deterministic (one sample, a directional light): no noise allowance.
 template <class Render>
 void check_diffuse_floor(Render render, const std::string& path) {
-    const Scene flat = floor_scene(false, false), mapped = floor_scene(true, false);
+    const SceneData flat = floor_scene(false, false), mapped = floor_scene(true, false);
     const RenderResult a = render(flat, build_accel(flat, BuildParams{}));
     const RenderResult b = render(mapped, build_accel(mapped, BuildParams{}));
     expect_clean(a, 1.0f + 1e-6f, path + " flat");
@@ -252,7 +252,7 @@ void check_diffuse_floor(Render render, const std::string& path) {
 /// floor must trace no more reflection rays than the flat one. Pixels stay in [0, L].
 template <class Render>
 void check_mirror_floor(Render render, const std::string& path) {
-    const Scene flat = floor_scene(false, true), mapped = floor_scene(true, true);
+    const SceneData flat = floor_scene(false, true), mapped = floor_scene(true, true);
     const RenderResult a = render(flat, build_accel(flat, BuildParams{}));
     const RenderResult b = render(mapped, build_accel(mapped, BuildParams{}));
     expect_clean(a, 0.6f, path + " flat");
@@ -270,13 +270,13 @@ void check_mirror_floor(Render render, const std::string& path) {
 
 TEST(NormalMapFrame, DiffuseFloorWithAnEightyNineDegreeMapIsNoBrighterThanFlat) {
     check_diffuse_floor(
-        [](const Scene& s, const Accel& a) { return render_scalar(s, a, RenderParams{}); },
+        [](const SceneData& s, const Accel& a) { return render_scalar(s, a, RenderParams{}); },
         "scalar");
 }
 
 TEST(NormalMapFrame, MirrorFloorWithAnEightyNineDegreeMapTracesNoRayIntoItself) {
     check_mirror_floor(
-        [](const Scene& s, const Accel& a) { return render_scalar(s, a, RenderParams{}); },
+        [](const SceneData& s, const Accel& a) { return render_scalar(s, a, RenderParams{}); },
         "scalar");
 }
 
@@ -343,16 +343,16 @@ TYPED_TEST(NormalMapFramePacket, FramesAndBentNormalsMatchTheScalarBitForBit) {
 
 TYPED_TEST(NormalMapFramePacket, DiffuseFloorWithAnEightyNineDegreeMapIsNoBrighterThanFlat) {
     constexpr int W = TypeParam::value;
-    check_diffuse_floor(
-        [](const Scene& s, const Accel& a) { return render_packet_width<W>(s, a, RenderParams{}); },
-        "packet W=" + std::to_string(W));
+    check_diffuse_floor([](const SceneData& s,
+                           const Accel& a) { return render_packet_width<W>(s, a, RenderParams{}); },
+                        "packet W=" + std::to_string(W));
 }
 
 TYPED_TEST(NormalMapFramePacket, MirrorFloorWithAnEightyNineDegreeMapTracesNoRayIntoItself) {
     constexpr int W = TypeParam::value;
-    check_mirror_floor(
-        [](const Scene& s, const Accel& a) { return render_packet_width<W>(s, a, RenderParams{}); },
-        "packet W=" + std::to_string(W));
+    check_mirror_floor([](const SceneData& s,
+                          const Accel& a) { return render_packet_width<W>(s, a, RenderParams{}); },
+                       "packet W=" + std::to_string(W));
 }
 
 }  // namespace

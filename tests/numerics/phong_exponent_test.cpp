@@ -449,8 +449,8 @@ TEST(PhongExtremeExponent, DirectionalAlbedoStaysBounded) { check_albedo<0>("sca
 /// A sphere in a smooth environment (bilinear 16 x 8, varying with latitude only, so that it is
 /// smooth at the poles too): glossy Phong at e = 1e6 with k_s c_s = 1, or a perfect
 /// angle-independent mirror.
-Scene glossy_sphere(bool mirror, BrdfScaling scaling) {
-    Scene s;
+SceneData glossy_sphere(bool mirror, BrdfScaling scaling) {
+    SceneData s;
     s.camera.position = vec3(0.0f, 0.0f, -4.0f);
     s.camera.look_at = vec3(0.0f);
     s.camera.fov_deg = 34.0f;
@@ -484,7 +484,7 @@ Scene glossy_sphere(bool mirror, BrdfScaling scaling) {
 }
 
 /// cos(theta_o) at each pixel's hit on the unit sphere (0 for pixels that miss).
-std::vector<double> view_cosines(const Scene& s) {
+std::vector<double> view_cosines(const SceneData& s) {
     const CameraFrame frame = make_camera_frame(s.camera);
     std::vector<double> out;
     for (int y = 0; y < s.camera.height; ++y) {
@@ -508,7 +508,7 @@ std::vector<double> view_cosines(const Scene& s) {
 /// Silhouette pixels (cos < 0.05), where part of the lobe dips below the surface, are left out.
 template <class Render>
 void check_glossy_is_mirror(Render render, const std::string& path) {
-    const Scene mirror = glossy_sphere(true, BrdfScaling::physical);
+    const SceneData mirror = glossy_sphere(true, BrdfScaling::physical);
     const Accel accel = build_accel(mirror, BuildParams{});
     const RenderResult ref = render(mirror, accel);
     const std::vector<double> cosines = view_cosines(mirror);
@@ -545,7 +545,7 @@ void check_glossy_is_mirror(Render render, const std::string& path) {
 
 TEST(PhongExtremeExponent, GlossySphereAtOneMillionRendersAsTheMirror) {
     check_glossy_is_mirror(
-        [](const Scene& s, const Accel& a) { return render_scalar(s, a, RenderParams{}); },
+        [](const SceneData& s, const Accel& a) { return render_scalar(s, a, RenderParams{}); },
         "scalar");
 }
 
@@ -640,7 +640,9 @@ TYPED_TEST(PhongExtremeExponentPacket, DirectionalAlbedoStaysBounded) {
 TYPED_TEST(PhongExtremeExponentPacket, GlossySphereAtOneMillionRendersAsTheMirror) {
     constexpr int W = TypeParam::value;
     check_glossy_is_mirror(
-        [](const Scene& s, const Accel& a) { return render_packet_width<W>(s, a, RenderParams{}); },
+        [](const SceneData& s, const Accel& a) {
+            return render_packet_width<W>(s, a, RenderParams{});
+        },
         "packet W=" + std::to_string(W));
 }
 

@@ -70,7 +70,7 @@ TEST(Plane, ShadowRaysLeavingThePlaneAreNotOccludedByIt) {
     const size_t n = ray_count(200000);
     for (float scale : {1e-4f, 1.0f, 1e5f}) {
         SCOPED_TRACE("scale " + std::to_string(scale));
-        Scene scene;
+        SceneData scene;
         scene.materials.push_back(Material{});
         scene.planes.push_back(
             {scale * vec3(0.3f, -1.0f, 0.2f), vec3(glm::normalize(glm::dvec3(0.1, 1.0, -0.25)))});
@@ -109,7 +109,7 @@ TEST(Plane, ShadowRaysLeavingThePlaneAreNotOccludedByIt) {
 /// §6 and §20: infinite planes are tested from Accel::unbounded, never put in the top-level BVH
 /// (an infinite box would spoil every median split above it).
 TEST(Plane, PlanesStayOutOfTheBvh) {
-    Scene scene = make_mesh_scene({make_cube_mesh(vec3(0.0f), vec3(1.0f))});
+    SceneData scene = make_mesh_scene({make_cube_mesh(vec3(0.0f), vec3(1.0f))});
     scene.spheres.push_back({vec3(3.0f), 1.0f});
     scene.planes.push_back({vec3(0.0f), vec3(0.0f, 1.0f, 0.0f)});
     scene.planes.push_back({vec3(0.0f, 9.0f, 0.0f), vec3(0.0f, -1.0f, 0.0f)});

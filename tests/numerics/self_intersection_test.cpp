@@ -35,7 +35,7 @@ const Setup setups[] = {{"scale 1e-4", 1e-4, 0.0},
 enum : uint32_t { box_id = 0, ball_id = 1, glass_id = 2 };
 
 struct SweepScene {
-    Scene scene;
+    SceneData scene;
     Accel accel;
     glm::dvec3 light;  ///< the light's position as placed (float), in double
 };
@@ -84,7 +84,7 @@ SweepScene make_sweep_scene(const Setup& s, int width, int height) {
 
 /// Exact-arithmetic visibility of the light from a surface point (double, from the double
 /// oracle's hit point): +1 lit, -1 in shadow, 0 too close to a shadow boundary to call.
-int exact_visibility(const Scene& sc, glm::dvec3 p, glm::dvec3 n, glm::dvec3 light) {
+int exact_visibility(const SceneData& sc, glm::dvec3 p, glm::dvec3 n, glm::dvec3 light) {
     const glm::dvec3 to = light - p;
     const double len = glm::length(to);
     const double facing = glm::dot(n, to) / len;
@@ -114,7 +114,7 @@ struct Sweep {
 };
 
 Sweep run_sweep(const SweepScene& ss) {
-    const Scene& sc = ss.scene;
+    const SceneData& sc = ss.scene;
     EXPECT_TRUE(sc.objects.size() == 3 && sc.objects[box_id].kind == ShapeKind::box &&
                 sc.materials[sc.objects[glass_id].material].refractive);
     const CameraFrame frame = make_camera_frame(sc.camera);

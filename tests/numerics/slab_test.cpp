@@ -103,7 +103,7 @@ TEST(Slab, RaysInFacePlanesTouchTheBoxAndNeverGiveNaN) {
 /// The single oracle test of §2: the cube (12 triangles) and a 2-triangle floor in its bottom
 /// plane (coplanar ties), through the two-level BVH, against brute force over every triangle.
 TEST(Slab, BvhMatchesBruteForceOnAdversarialRays) {
-    const Scene scene =
+    const SceneData scene =
         make_mesh_scene({make_cube_mesh(vec3(0.0f), vec3(1.0f)), make_floor_mesh(0.0f, 2.0f)});
     const Accel accel = build_accel(scene, BuildParams{1});
     const std::vector<Ray> rays = adversarial_rays(ray_count(1000000));

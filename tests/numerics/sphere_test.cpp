@@ -213,7 +213,7 @@ TEST(Sphere, HitPointsLieOnTheSurfaceWithinFourUlps) {
                 eye = -s.center;
                 s.center = vec3(0.0f);
             }
-            Scene scene;
+            SceneData scene;
             scene.materials.push_back(Material{});
             scene.spheres.push_back(s);
             scene.objects.push_back(Object{});
@@ -245,7 +245,7 @@ TEST(Sphere, FarViewedSpheresDoNotShadowThemselves) {
     const size_t n = ray_count(100000);
     for (float dist : {1e2f, 1e3f, 1e4f}) {
         SCOPED_TRACE("camera at " + std::to_string(dist));
-        Scene scene;
+        SceneData scene;
         scene.materials.push_back(Material{});
         scene.spheres.push_back({vec3(0.0f), 1.0f});
         scene.objects.push_back(Object{});

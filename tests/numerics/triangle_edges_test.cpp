@@ -22,7 +22,7 @@ struct Target {
     std::vector<glm::dvec3> normals;
 };
 
-std::vector<Target> edge_and_vertex_targets(const Mesh& m, int per_edge, uint32_t seed) {
+std::vector<Target> edge_and_vertex_targets(const MeshData& m, int per_edge, uint32_t seed) {
     std::vector<glm::dvec3> tri_normal;
     for (uvec3 t : m.tris) {
         const glm::dvec3 a(m.positions[t.x]), b(m.positions[t.y]), c(m.positions[t.z]);
@@ -55,7 +55,7 @@ std::vector<Target> edge_and_vertex_targets(const Mesh& m, int per_edge, uint32_
 /// times `size` from the centre to every target whose surrounding triangles all face the ray's
 /// origin within 60 degrees (so the ray enters the solid there rather than grazing it). Every
 /// one of them must hit the closed mesh.
-std::vector<Ray> edge_rays(const Mesh& m, vec3 center, float size, int per_edge) {
+std::vector<Ray> edge_rays(const MeshData& m, vec3 center, float size, int per_edge) {
     const std::vector<Target> targets = edge_and_vertex_targets(m, per_edge, 7);
     std::vector<Ray> rays;
     const vec3 inside[] = {vec3(0.0f), vec3(0.3f, 0.2f, -0.1f), vec3(-0.25f, 0.4f, 0.3f)};
@@ -88,7 +88,7 @@ std::vector<Ray> edge_rays(const Mesh& m, vec3 center, float size, int per_edge)
 
 struct MeshCase {
     const char* name;
-    Mesh mesh;
+    MeshData mesh;
     vec3 center;
     float size;
     int per_edge;  ///< random targets per edge
@@ -106,7 +106,7 @@ std::vector<MeshCase> closed_meshes() {
 struct EdgeCase {
     MeshCase mc;
     std::vector<Ray> rays;
-    Scene scene;
+    SceneData scene;
     std::vector<Hit> brute;
 };
 
@@ -157,7 +157,7 @@ TEST(TriangleEdges, ClosedMeshesHaveNoCracksAtEdgesAndVertices) {
 }
 
 /// The closest t over every triangle by the double instantiation of the watertight test.
-double double_closest_t(const Mesh& m, const Ray& r) {
+double double_closest_t(const MeshData& m, const Ray& r) {
     const RayOf<double> rd = ray_of<double>(r);
     const WatertightRayOf<double> wr = make_watertight_ray(rd);
     double best = infinity_of<double>;
@@ -209,7 +209,7 @@ TEST(TriangleEdges, BvhAndPacketPathsAgreeWithBruteForce) {
     for (const EdgeCase& ec : edge_cases()) {
         SCOPED_TRACE(ec.mc.name);
         const std::vector<Ray>& rays = ec.rays;
-        const Scene& scene = ec.scene;
+        const SceneData& scene = ec.scene;
         const Accel accel = build_accel(scene, BuildParams{});
         std::vector<Hit> scalar(rays.size());
         size_t bvh_mismatch = 0;
@@ -232,8 +232,8 @@ TEST(TriangleEdges, BvhAndPacketPathsAgreeWithBruteForce) {
 /// A ray through a vertex meets up to six triangles at the same t: the one reported is the
 /// smallest primitive id among them, in every run and in both paths.
 TEST(TriangleEdges, RaysThroughAVertexReportTheSmallestPrimitive) {
-    const Mesh m = make_icosphere(3, vec3(0.0f), 1.0f);
-    const Scene scene = make_mesh_scene({m});
+    const MeshData m = make_icosphere(3, vec3(0.0f), 1.0f);
+    const SceneData scene = make_mesh_scene({m});
     const Accel accel = build_accel(scene, BuildParams{});
     std::vector<Ray> rays;
     for (vec3 p : m.positions) rays.push_back({vec3(0.0f), p, 0.0f, infinity});

@@ -124,7 +124,7 @@ TEST(ZeroThicknessBox, RaysInItsPlaneMissWithoutNaN) {
 /// answer (primitive and t), in both paths.
 TEST(ZeroThicknessBox, FlatBvhNodesHaveNoHolesAtGrazingAngles) {
     const int cells = 16;
-    Mesh floor;
+    MeshData floor;
     floor.name = "tiled floor";
     for (int i = 0; i <= cells; ++i)
         for (int j = 0; j <= cells; ++j)
@@ -138,7 +138,7 @@ TEST(ZeroThicknessBox, FlatBvhNodesHaveNoHolesAtGrazingAngles) {
             floor.tris.push_back({a, d, c});
         }
     }
-    const Scene scene = make_mesh_scene({floor});
+    const SceneData scene = make_mesh_scene({floor});
     const Accel accel = build_accel(scene, BuildParams{2});
     const Aabb root = accel.meshes[0].bvh.nodes[0].bounds();
     ASSERT_EQ(root.lo.y, root.hi.y) << "the floor's nodes must be flat";

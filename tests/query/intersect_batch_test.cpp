@@ -15,12 +15,12 @@ namespace {
 
 /// A scene of one mesh: 3000 random triangles in the unit cube (fixed seed).
 struct BatchScene {
-    Scene scene;
+    SceneData scene;
     Accel accel;
     BatchScene() {
         std::mt19937 rng(3);
         std::uniform_real_distribution<float> uni(0.0f, 1.0f), small(-0.05f, 0.05f);
-        Mesh mesh;
+        MeshData mesh;
         for (uint32_t i = 0; i < 3000; ++i) {
             const vec3 c(uni(rng), uni(rng), uni(rng));
             for (int k = 0; k < 3; ++k)
@@ -190,7 +190,7 @@ TEST(IntersectBatch, EmptyBatchWritesNothing) {
 }
 
 TEST(IntersectBatch, SceneWithoutObjectsGivesMisses) {
-    Scene scene;
+    SceneData scene;
     const Accel accel = build_accel(scene, BuildParams{});
     const std::vector<float> rays = batch_rays(600);
     const RayArrays a = batch_arrays(rays);

@@ -27,8 +27,8 @@ void operator delete(void* p, size_t) noexcept { std::free(p); }
 namespace raylane {
 namespace {
 
-long allocations_for(const Scene& scene, const Accel& accel, int width, int height) {
-    Scene s = scene;
+long allocations_for(const SceneData& scene, const Accel& accel, int width, int height) {
+    SceneData s = scene;
     s.camera.width = width;
     s.camera.height = height;
     RenderParams p;
@@ -46,7 +46,7 @@ TEST(RenderPacket, AllocatesNothingPerTile) {
 #ifdef RAYLANE_SANITIZED
     GTEST_SKIP() << "the sanitizers replace operator new";
 #endif
-    const Scene scene = make_builtin_scene();
+    const SceneData scene = make_builtin_scene();
     const Accel accel = build_accel(scene, BuildParams{});
     const long few = allocations_for(scene, accel, 32, 32);     // 4 tiles
     const long many = allocations_for(scene, accel, 256, 256);  // 256 tiles
@@ -60,7 +60,7 @@ TEST(RenderPacket, AllocatesNothingPerTileWithSecondaryRaysAndAreaLights) {
 #endif
     // glossy rays, area lights and textures; then glass: the queues grow on the first tiles only
     for (const char* name : {"fig01b_glossy_sphere.json", "fig05_refractive_sphere.json"}) {
-        const Scene scene = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name);
+        const SceneData scene = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name);
         const Accel accel = build_accel(scene, BuildParams{});
         const long few = allocations_for(scene, accel, 32, 32);
         const long many = allocations_for(scene, accel, 128, 128);

@@ -36,7 +36,7 @@ bool same_pixels(const Film& whole, const Film& part, const PixelRect& r, std::s
 /// whole frame, in both renderers.
 TEST(Region, EveryRectangleHasTheWholeFramesPixels) {
     for (const char* name : {"builtin", "fig10_glass_bunny"}) {
-        Scene scene = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
+        SceneData scene = load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
         scene.camera.width = 45;
         scene.camera.height = 37;
         const Accel accel = build_accel(scene, BuildParams{});
@@ -66,7 +66,7 @@ TEST(Region, EveryRectangleHasTheWholeFramesPixels) {
 }
 
 TEST(Region, OutsideTheFrameIsRefused) {
-    Scene scene = make_builtin_scene();
+    SceneData scene = make_builtin_scene();
     scene.camera.width = 20;
     scene.camera.height = 10;
     const Accel accel = build_accel(scene, BuildParams{});

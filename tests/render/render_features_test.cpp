@@ -18,7 +18,7 @@ namespace {
 
 using namespace test;
 
-Scene scene_file(const std::string& name) {
+SceneData scene_file(const std::string& name) {
     return load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name);
 }
 
@@ -30,7 +30,7 @@ TEST(RenderFeatures, SpecialisedKernelsGiveTheGenericKernelsImage) {
     for (const auto& entry :
          std::filesystem::directory_iterator(std::string(RAYLANE_SOURCE_DIR) + "/scenes")) {
         if (entry.path().extension() != ".json") continue;
-        Scene scene;
+        SceneData scene;
         try {
             scene = load_scene(entry.path().string());
         } catch (const std::exception& e) {
@@ -57,9 +57,9 @@ TEST(RenderFeatures, SpecialisedKernelsGiveTheGenericKernelsImage) {
 
 /// Glass of index 1 that absorbs nothing is invisible: the image equals the environment alone.
 TEST(RenderFeatures, GlassOfIndexOneIsInvisible) {
-    Scene scene = small_scene(scene_file("fig05_refractive_sphere.json"), 64);
+    SceneData scene = small_scene(scene_file("fig05_refractive_sphere.json"), 64);
     scene.materials[0].ior = 1.0f;
-    Scene empty = scene;
+    SceneData empty = scene;
     empty.objects.clear();
     for (auto* render : {&render_scalar, &render_packet}) {
         const Accel accel = build_accel(scene, BuildParams{});
@@ -75,7 +75,7 @@ TEST(RenderFeatures, GlassOfIndexOneIsInvisible) {
 /// Figure 4c: with the reflected radiance replaced by magenta and the local term off, the
 /// sphere's centre shows R c_s magenta with R = Schlick(0.5, 1) = 0.5.
 TEST(RenderFeatures, ReflectedColourOverrideShowsTheFresnelWeight) {
-    Scene scene = small_scene(scene_file("fig04c_reflection_magenta.json"), 65);
+    SceneData scene = small_scene(scene_file("fig04c_reflection_magenta.json"), 65);
     scene.shading.local = false;
     scene.materials[0].k_a_after = 0.0f;
     const Accel accel = build_accel(scene, BuildParams{});
@@ -94,11 +94,11 @@ TEST(RenderFeatures, ReflectedColourOverrideShowsTheFresnelWeight) {
 /// A lens of radius 0 is the pinhole camera; a real lens blurs what is off the plane of focus
 /// and keeps what is on it.
 TEST(RenderFeatures, ThinLensFocusesOnItsPlane) {
-    Scene scene = small_scene(scene_file("fig08a_dof_close.json"), 64);
+    SceneData scene = small_scene(scene_file("fig08a_dof_close.json"), 64);
     const Accel accel = build_accel(scene, BuildParams{});
     RenderParams p;
     p.spp = 16;
-    Scene pinhole = scene;
+    SceneData pinhole = scene;
     pinhole.camera.lens_radius = 0.0f;
     const RenderResult sharp = render_packet(pinhole, accel, p);
     const RenderResult lens = render_packet(scene, accel, p);

@@ -31,7 +31,7 @@ class RenderPacket : public ::testing::Test {};
 TYPED_TEST_SUITE(RenderPacket, Widths, WidthName);
 
 /// The built-in scene, or scenes/NAME.json.
-Scene scene_named(const std::string& name) {
+SceneData scene_named(const std::string& name) {
     return name == "builtin"
                ? make_builtin_scene()
                : load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/" + name + ".json");
@@ -51,7 +51,7 @@ TYPED_TEST(RenderPacket, MatchesScalarWithJitteredSamples) {
                                                  {"fig01b_glossy_sphere", 2}};
     for (const auto& [name, spp] : cases) {
         const std::string what = std::string(name) + ", " + std::to_string(spp) + " spp";
-        Scene scene;
+        SceneData scene;
         try {
             scene = scene_named(name);
         } catch (const std::exception& e) {
@@ -81,7 +81,7 @@ TYPED_TEST(RenderPacket, MatchesScalarWithJitteredSamples) {
 TYPED_TEST(RenderPacket, AovsMatchScalar) {
     constexpr int W = TypeParam::value;
     for (const char* name : {"builtin", "fig05_refractive_sphere"}) {
-        const Scene scene = small_scene(scene_named(name), 64);
+        const SceneData scene = small_scene(scene_named(name), 64);
         const Accel accel = build_accel(scene, BuildParams{});
         for (Aov aov : {Aov::normal, Aov::depth, Aov::bvh_cost}) {
             RenderParams p;
@@ -111,7 +111,7 @@ TYPED_TEST(RenderPacket, AovsMatchScalar) {
 /// make a batch of 16 and one of 3).
 TEST(RenderPacket, SameImageForOneAndTwoThreads) {
     for (const char* name : {"builtin", "fig10_glass_bunny"}) {
-        const Scene scene = small_scene(scene_named(name), 80);
+        const SceneData scene = small_scene(scene_named(name), 80);
         const Accel accel = build_accel(scene, BuildParams{});
         RenderParams p;
         p.spp = std::string(name) == "builtin" ? 2 : 19;
@@ -129,7 +129,7 @@ TEST(RenderPacket, SameImageForOneAndTwoThreads) {
 /// and image edges; every image is the 16-pixel one bit for bit.
 TEST(RenderPacket, SameImageForEveryTileSize) {
     for (const char* name : {"builtin", "dragon"}) {
-        Scene scene;
+        SceneData scene;
         try {
             scene = small_scene(scene_named(name), 75);
         } catch (const std::exception& e) {
@@ -160,7 +160,7 @@ TEST(RenderPacket, EverySceneFileAgreesWithTheScalarPath) {
     for (const auto& entry :
          std::filesystem::directory_iterator(std::string(RAYLANE_SOURCE_DIR) + "/scenes")) {
         if (entry.path().extension() != ".json") continue;
-        Scene scene;
+        SceneData scene;
         try {
             scene = load_scene(entry.path().string());
         } catch (const std::exception& e) {

@@ -6,16 +6,16 @@
 namespace raylane {
 namespace {
 
-Scene small_builtin(int w, int h) {
-    Scene scene = make_builtin_scene();
+SceneData small_builtin(int w, int h) {
+    SceneData scene = make_builtin_scene();
     scene.camera.width = w;
     scene.camera.height = h;
     return scene;
 }
 
 /// One diffuse sphere of radius 1 at z = 3, a directional light along the view axis.
-Scene lit_sphere() {
-    Scene scene;
+SceneData lit_sphere() {
+    SceneData scene;
     scene.camera.width = 33;
     scene.camera.height = 33;
     scene.camera.fov_deg = 60.0f;
@@ -36,7 +36,7 @@ Scene lit_sphere() {
 }
 
 TEST(RenderScalar, SameImageForOneAndTwoThreads) {
-    const Scene scene = small_builtin(96, 64);
+    const SceneData scene = small_builtin(96, 64);
     const Accel accel = build_accel(scene, BuildParams{});
     RenderParams p;
     p.spp = 3;
@@ -52,7 +52,7 @@ TEST(RenderScalar, SameImageForOneAndTwoThreads) {
 }
 
 TEST(RenderScalar, BuiltinSceneIsNotBlankAndShowsSeveralColours) {
-    const Scene scene = small_builtin(64, 48);
+    const SceneData scene = small_builtin(64, 48);
     const RenderResult r = render_scalar(scene, build_accel(scene, BuildParams{}), RenderParams{});
     int lit = 0;
     vec3 lo(1e9f), hi(-1e9f);
@@ -69,7 +69,7 @@ TEST(RenderScalar, BuiltinSceneIsNotBlankAndShowsSeveralColours) {
 
 TEST(RenderScalar, DiffuseSphereCentreMatchesTheReportsEquation) {
     // centre pixel: normal faces the light, cos = 1: L = k_d * intensity * c_d = 0.5
-    const Scene scene = lit_sphere();
+    const SceneData scene = lit_sphere();
     const RenderResult r = render_scalar(scene, build_accel(scene, BuildParams{}), RenderParams{});
     EXPECT_NEAR(r.film.at(16, 16).x, 0.5f, 1e-4f);
     EXPECT_EQ(r.film.at(0, 0), vec3(0.0f));  // background
@@ -78,7 +78,7 @@ TEST(RenderScalar, DiffuseSphereCentreMatchesTheReportsEquation) {
 }
 
 TEST(RenderScalar, ShadowRaysDarkenOccludedPoints) {
-    Scene scene = lit_sphere();
+    SceneData scene = lit_sphere();
     // a big occluder between the light (at -z, towards the camera) and the sphere... place a
     // point light behind the camera and a small sphere that shadows the centre.
     scene.lights[0].kind = LightKind::point;
@@ -96,7 +96,7 @@ TEST(RenderScalar, ShadowRaysDarkenOccludedPoints) {
 }
 
 TEST(RenderScalar, JitteredSamplesChangeWithTheSeedOnly) {
-    const Scene scene = small_builtin(32, 24);
+    const SceneData scene = small_builtin(32, 24);
     const Accel accel = build_accel(scene, BuildParams{});
     RenderParams p;
     p.spp = 4;
@@ -109,7 +109,7 @@ TEST(RenderScalar, JitteredSamplesChangeWithTheSeedOnly) {
 }
 
 TEST(RenderScalar, AovsHaveTheirMeaning) {
-    const Scene scene = lit_sphere();
+    const SceneData scene = lit_sphere();
     const Accel accel = build_accel(scene, BuildParams{});
     RenderParams p;
     p.aov = Aov::depth;

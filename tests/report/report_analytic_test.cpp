@@ -13,8 +13,8 @@ namespace raylane {
 namespace {
 
 /// One sphere, a directional and a point light, ambient and Phong terms, black background.
-Scene lit_sphere_scene(int w, int h) {
-    Scene s;
+SceneData lit_sphere_scene(int w, int h) {
+    SceneData s;
     s.source = "<test>";
     s.camera.position = vec3(0.0f, 0.0f, -4.0f);
     s.camera.look_at = vec3(0.0f);
@@ -46,7 +46,7 @@ Scene lit_sphere_scene(int w, int h) {
 }
 
 TEST(AnalyticReference, LitSphereAgreesWithAConvergedRender) {
-    const Scene scene = lit_sphere_scene(40, 30);
+    const SceneData scene = lit_sphere_scene(40, 30);
     const auto a = analytic_reference(scene, 32);
     ASSERT_TRUE(a.has_value());
     EXPECT_NE(a->name.find("lit sphere"), std::string::npos);
@@ -71,7 +71,7 @@ TEST(AnalyticReference, LitSphereAgreesWithAConvergedRender) {
 
 TEST(AnalyticReference, IsNotClaimedForOtherScenes) {
     EXPECT_FALSE(analytic_reference(make_builtin_scene()).has_value());
-    Scene s = lit_sphere_scene(8, 6);
+    SceneData s = lit_sphere_scene(8, 6);
     s.objects[0].has_transform = true;
     EXPECT_FALSE(analytic_reference(s).has_value());
     s = lit_sphere_scene(8, 6);
@@ -83,7 +83,7 @@ TEST(AnalyticReference, IsNotClaimedForOtherScenes) {
 }
 
 TEST(AnalyticReference, MirrorFurnaceIsTheBackgroundEverywhere) {
-    Scene s = lit_sphere_scene(8, 6);
+    SceneData s = lit_sphere_scene(8, 6);
     s.lights.clear();
     s.background = vec3(0.3f, 0.4f, 0.5f);
     Material& m = s.materials[0];

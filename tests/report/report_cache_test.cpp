@@ -24,7 +24,7 @@ using test::tiny_builtin;
 using test::write_file;
 
 TEST(ConvergedReference, VarianceFromHalvesPredictsTheSpreadOfIndependentReferences) {
-    const Scene scene = tiny_builtin();
+    const SceneData scene = tiny_builtin();
     const Accel accel = build_accel(scene, BuildParams{});
     ReferenceParams p;
     p.spp = 64;
@@ -41,7 +41,7 @@ TEST(ConvergedReference, VarianceFromHalvesPredictsTheSpreadOfIndependentReferen
 }
 
 TEST(ConvergedReference, ChunksReportProgressAndRejectTooFewSamples) {
-    const Scene scene = tiny_builtin();
+    const SceneData scene = tiny_builtin();
     const Accel accel = build_accel(scene, BuildParams{});
     ReferenceParams p;
     p.spp = 10;

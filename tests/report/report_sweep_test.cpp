@@ -15,7 +15,7 @@ namespace {
 using test::tiny_builtin;
 
 TEST(SweepKnobs, FollowAreaLightsAndGlossyMaterials) {
-    Scene scene = make_builtin_scene();
+    SceneData scene = make_builtin_scene();
     EXPECT_EQ(sweep_knobs(scene), std::vector<SweepKnob>{SweepKnob::spp});
     Light area;
     area.kind = LightKind::rect;
@@ -31,7 +31,7 @@ TEST(SweepKnobs, FollowAreaLightsAndGlossyMaterials) {
 }
 
 TEST(SweepKnobs, ParamsSetOnlyTheSweptCount) {
-    Scene scene = make_builtin_scene();
+    SceneData scene = make_builtin_scene();
     scene.camera.spp = 3;
     const RenderParams a = sweep_params(scene, SweepKnob::spp, 16, 2, 7);
     EXPECT_EQ(a.spp, 16);
@@ -48,7 +48,7 @@ TEST(SweepKnobs, ParamsSetOnlyTheSweptCount) {
 }
 
 TEST(Sweep, RmseFallsWithSamplesAtAPlausibleRate) {
-    const Scene scene = tiny_builtin();
+    const SceneData scene = tiny_builtin();
     const Accel accel = build_accel(scene, BuildParams{});
     ReferenceParams rp;
     rp.spp = 64;
@@ -86,7 +86,7 @@ TEST(Sweep, RmseFallsWithSamplesAtAPlausibleRate) {
 }
 
 TEST(Sweep, RepeatsUseDifferentSeedsAndGiveAStandardError) {
-    const Scene scene = tiny_builtin();
+    const SceneData scene = tiny_builtin();
     const Accel accel = build_accel(scene, BuildParams{});
     ReferenceParams rp;
     rp.spp = 16;

@@ -10,8 +10,8 @@
 namespace raylane {
 namespace {
 
-Scene one_sphere_scene(vec3 look_at, bool lit) {
-    Scene s;
+SceneData one_sphere_scene(vec3 look_at, bool lit) {
+    SceneData s;
     s.materials.push_back(Material{});
     s.spheres.push_back(Sphere{vec3(0.0f), 1.0f});
     Object o;
@@ -24,12 +24,12 @@ Scene one_sphere_scene(vec3 look_at, bool lit) {
 }
 
 TEST(Warnings, AWellSetSceneHasNone) {
-    const Scene s = one_sphere_scene(vec3(0.0f), true);
+    const SceneData s = one_sphere_scene(vec3(0.0f), true);
     EXPECT_TRUE(scene_warnings(s, build_accel(s, BuildParams{})).empty());
 }
 
 TEST(Warnings, NoLightsAndACameraThatSeesNothing) {
-    const Scene s = one_sphere_scene(vec3(0.0f, 0.0f, -10.0f), false);
+    const SceneData s = one_sphere_scene(vec3(0.0f, 0.0f, -10.0f), false);
     const std::vector<std::string> w = scene_warnings(s, build_accel(s, BuildParams{}));
     ASSERT_EQ(w.size(), 2u);
     EXPECT_EQ(w[0].rfind("the scene has no lights", 0), 0u) << w[0];
@@ -37,7 +37,7 @@ TEST(Warnings, NoLightsAndACameraThatSeesNothing) {
 }
 
 TEST(Warnings, ASceneWithoutObjects) {
-    Scene s;
+    SceneData s;
     s.lights.push_back(Light{});
     const std::vector<std::string> w = scene_warnings(s, build_accel(s, BuildParams{}));
     ASSERT_EQ(w.size(), 1u);

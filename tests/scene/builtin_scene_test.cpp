@@ -13,7 +13,7 @@ namespace raylane {
 namespace {
 
 TEST(BuiltinScene, HasEveryAnalyticShapeKindAndTwoLights) {
-    Scene s = make_builtin_scene();
+    SceneData s = make_builtin_scene();
     EXPECT_EQ(s.source, "<built-in>");
     std::set<ShapeKind> kinds;
     for (const Object& o : s.objects) kinds.insert(o.kind);
@@ -33,7 +33,7 @@ TEST(BuiltinScene, HasEveryAnalyticShapeKindAndTwoLights) {
 }
 
 TEST(BuiltinScene, ObjectsReferToValidShapesAndDistinctMaterials) {
-    Scene s = make_builtin_scene();
+    SceneData s = make_builtin_scene();
     std::set<std::tuple<float, float, float>> colours;
     for (const Material& m : s.materials) colours.insert({m.c_d.x, m.c_d.y, m.c_d.z});
     EXPECT_EQ(colours.size(), s.materials.size());
@@ -89,7 +89,7 @@ glm::vec2 project(const Camera& c, vec3 p) {
 }
 
 TEST(BuiltinScene, CameraSeesEveryBoundedObject) {
-    Scene s = make_builtin_scene();
+    SceneData s = make_builtin_scene();
     for (const Object& o : s.objects) {
         vec3 centre;
         switch (o.kind) {
@@ -118,8 +118,8 @@ TEST(BuiltinScene, CameraSeesEveryBoundedObject) {
 }
 
 TEST(BuiltinScene, EqualsScenesBuiltinJson) {
-    Scene a = make_builtin_scene();
-    Scene b = load_scene(RAYLANE_SOURCE_DIR "/scenes/builtin.json");
+    SceneData a = make_builtin_scene();
+    SceneData b = load_scene(RAYLANE_SOURCE_DIR "/scenes/builtin.json");
     EXPECT_EQ(a.camera.position, b.camera.position);
     EXPECT_EQ(a.camera.look_at, b.camera.look_at);
     EXPECT_EQ(a.camera.up, b.camera.up);
@@ -187,10 +187,10 @@ TEST(BuiltinScene, EqualsScenesBuiltinJson) {
 }
 
 TEST(CountTriangles, SumsMeshTrianglesAndSingleTriangles) {
-    Scene s;
+    SceneData s;
     EXPECT_EQ(count_triangles(s), 0u);
     s.triangles.resize(2);
-    Mesh m;
+    MeshData m;
     m.tris.resize(5);
     s.meshes.push_back(m);
     m.tris.resize(7);

@@ -87,10 +87,10 @@ std::string scene_with_camera(const std::string& extra) {
 }
 
 TEST(CameraPath, SceneFormatReadsPathsAndTurntables) {
-    const Scene a =
+    const SceneData a =
         load_scene_from_string(scene_with_camera(R"(, "turntable": {"frames": 36})"), "t.json");
     EXPECT_EQ(frame_count(a.camera_path), 36);
-    const Scene b = load_scene_from_string(
+    const SceneData b = load_scene_from_string(
         scene_with_camera(R"(, "path": {"fps": 10, "interpolation": "linear", "keys": [
             {"time": 0, "position": [0, 1, -4], "look_at": [0, 1, 0]},
             {"time": 2, "position": [4, 1, 0], "look_at": [0, 1, 0], "fov_deg": 60}]})"),

@@ -9,8 +9,8 @@ namespace raylane {
 namespace {
 
 /// A unit cube's 8 corners and 12 outward-wound triangles.
-Mesh cube() {
-    Mesh m;
+MeshData cube() {
+    MeshData m;
     for (int i = 0; i < 8; ++i) m.positions.push_back(vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1));
     m.tris = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
               {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
@@ -18,7 +18,7 @@ Mesh cube() {
 }
 
 TEST(MeshNormals, SmoothNormalsPointOutwardFromTheCentre) {
-    Mesh m = cube();
+    MeshData m = cube();
     compute_smooth_normals(m);
     ASSERT_EQ(m.normals.size(), 8u);
     ASSERT_EQ(m.normal_tris.size(), m.tris.size());
@@ -31,7 +31,7 @@ TEST(MeshNormals, SmoothNormalsPointOutwardFromTheCentre) {
 
 TEST(MeshNormals, AreaWeightingFavoursTheLargerFace) {
     // two triangles meeting at vertex 0: a large one in the xy plane, a small one in the xz plane
-    Mesh m;
+    MeshData m;
     m.positions = {vec3(0.0f), vec3(10.0f, 0.0f, 0.0f), vec3(0.0f, 10.0f, 0.0f),
                    vec3(0.0f, 0.0f, -1.0f), vec3(1.0f, 0.0f, 0.0f)};
     m.tris = {{0, 1, 2}, {0, 3, 4}};
@@ -43,7 +43,7 @@ TEST(MeshNormals, AreaWeightingFavoursTheLargerFace) {
 }
 
 TEST(MeshNormals, DegenerateNeighbourhoodGivesZeroNotNaN) {
-    Mesh m;
+    MeshData m;
     m.positions = {vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(2.0f, 0.0f, 0.0f)};
     m.tris = {{0, 1, 2}};
     compute_smooth_normals(m);

@@ -8,8 +8,8 @@ namespace {
 
 /// Two quads sharing an edge (4 triangles), normals and uvs per vertex; triangles 0 and 3 of
 /// material "b", 1 and 2 of "a", and a third name no face uses.
-Mesh two_quads() {
-    Mesh m;
+MeshData two_quads() {
+    MeshData m;
     m.name = "quads";
     m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}};
     m.normals = std::vector<vec3>(6, vec3(0, 0, 1));
@@ -28,7 +28,7 @@ TEST(SplitMesh, OneMeshPerMaterialWithOnlyTheVerticesItUses) {
     ASSERT_EQ(parts.size(), 2u);  // "unused" gives no part
     EXPECT_EQ(parts[0].material, "a");
     EXPECT_EQ(parts[1].material, "b");
-    const Mesh& a = parts[0].mesh;
+    const MeshData& a = parts[0].mesh;
     EXPECT_EQ(a.name, "quads:a");
     // triangles (0, 2, 3) and (1, 4, 5): vertices renumbered in order of first use
     EXPECT_EQ(a.tris, (std::vector<uvec3>{{0, 1, 2}, {3, 4, 5}}));
@@ -38,7 +38,7 @@ TEST(SplitMesh, OneMeshPerMaterialWithOnlyTheVerticesItUses) {
     EXPECT_EQ(a.normal_tris, a.tris);
     EXPECT_EQ(a.uv_tris, a.tris);
     EXPECT_TRUE(a.material_names.empty() && a.tri_material.empty());
-    const Mesh& b = parts[1].mesh;
+    const MeshData& b = parts[1].mesh;
     EXPECT_EQ(b.tris.size(), 2u);
     EXPECT_EQ(b.positions.size(), 4u);  // 0, 1, 2 and 5
     // every triangle kept once, at the same place
@@ -51,7 +51,7 @@ TEST(SplitMesh, OneMeshPerMaterialWithOnlyTheVerticesItUses) {
 }
 
 TEST(SplitMesh, AMeshWithoutMaterialNamesIsTheOnePart) {
-    Mesh m = two_quads();
+    MeshData m = two_quads();
     m.material_names.clear();
     m.tri_material.clear();
     const std::vector<MeshPart> parts = split_by_material(m);

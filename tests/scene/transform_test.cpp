@@ -91,8 +91,8 @@ TEST(Transform, FitMovesTheBottomCentreToTheOffsetAndScalesUniformly) {
 }
 
 /// A mesh of one tilted triangle with its unit face normal on every vertex.
-Mesh make_tilted_triangle() {
-    Mesh m;
+MeshData make_tilted_triangle() {
+    MeshData m;
     m.positions = {vec3(0, 0, 0), vec3(1, 0.5f, 0.2f), vec3(0.3f, 1, 0.7f)};
     vec3 n = glm::normalize(
         glm::cross(m.positions[1] - m.positions[0], m.positions[2] - m.positions[0]));
@@ -103,7 +103,7 @@ Mesh make_tilted_triangle() {
 }
 
 TEST(Transform, BakedNormalsStayPerpendicularUnderNonUniformScale) {
-    Mesh m = make_tilted_triangle();
+    MeshData m = make_tilted_triangle();
     Transform t;
     t.translate = glm::dvec3(1, -2, 3);
     t.rotate = make_rotation_xyz(glm::dvec3(20, -75, 40));
@@ -123,7 +123,7 @@ TEST(Transform, BakedNormalsStayPerpendicularUnderNonUniformScale) {
 }
 
 TEST(Transform, MirrorReversesTheWindingToMatchTheNormals) {
-    Mesh m = make_tilted_triangle();
+    MeshData m = make_tilted_triangle();
     m.uvs = {vec2(0, 0), vec2(1, 0), vec2(0, 1)};
     m.uv_tris = {uvec3(0, 1, 2)};
     Transform t;
@@ -140,7 +140,7 @@ TEST(Transform, MirrorReversesTheWindingToMatchTheNormals) {
 }
 
 TEST(Transform, ZeroNormalStaysZero) {
-    Mesh m = make_tilted_triangle();
+    MeshData m = make_tilted_triangle();
     m.normals[1] = vec3(0.0f);
     Transform t;
     t.scale = glm::dvec3(3, 1, 1);
@@ -150,11 +150,11 @@ TEST(Transform, ZeroNormalStaysZero) {
 }
 
 TEST(Transform, MeshBoundsCoverEveryPosition) {
-    Mesh m = make_tilted_triangle();
+    MeshData m = make_tilted_triangle();
     Aabb b = mesh_bounds(m);
     EXPECT_EQ(b.lo, vec3(0, 0, 0));
     EXPECT_EQ(b.hi, vec3(1, 1, 0.7f));
-    EXPECT_TRUE(mesh_bounds(Mesh{}).empty());
+    EXPECT_TRUE(mesh_bounds(MeshData{}).empty());
 }
 
 }  // namespace

@@ -78,7 +78,7 @@ inline bool is_nan_bits(float f) { return f != f; }
 /// A closed icosphere: the icosahedron subdivided `level` times, vertices pushed to the sphere
 /// in double and rounded once, shared by index (so shared edges have identical endpoints).
 /// Outward winding. level 3: 642 vertices, 1,280 triangles.
-inline Mesh make_icosphere(int level, vec3 center, float radius) {
+inline MeshData make_icosphere(int level, vec3 center, float radius) {
     const double g = (1.0 + std::sqrt(5.0)) / 2.0;
     std::vector<glm::dvec3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
                                  {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
@@ -108,7 +108,7 @@ inline Mesh make_icosphere(int level, vec3 center, float radius) {
         }
         f = std::move(next);
     }
-    Mesh m;
+    MeshData m;
     m.name = "icosphere";
     for (const glm::dvec3& p : v)
         m.positions.push_back(vec3(glm::dvec3(center) + double(radius) * p));
@@ -117,8 +117,8 @@ inline Mesh make_icosphere(int level, vec3 center, float radius) {
 }
 
 /// The 12-triangle cube [lo, hi], outward winding, 8 shared vertices.
-inline Mesh make_cube_mesh(vec3 lo, vec3 hi) {
-    Mesh m;
+inline MeshData make_cube_mesh(vec3 lo, vec3 hi) {
+    MeshData m;
     m.name = "cube";
     for (int i = 0; i < 8; ++i)
         m.positions.push_back(vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z));
@@ -128,8 +128,8 @@ inline Mesh make_cube_mesh(vec3 lo, vec3 hi) {
 }
 
 /// A square floor of two triangles at height y, [-half, half]^2 in x and z, normal +y.
-inline Mesh make_floor_mesh(float y, float half) {
-    Mesh m;
+inline MeshData make_floor_mesh(float y, float half) {
+    MeshData m;
     m.name = "floor";
     m.positions = {{-half, y, -half}, {half, y, -half}, {half, y, half}, {-half, y, half}};
     m.tris = {{0, 2, 1}, {0, 3, 2}};
@@ -137,10 +137,10 @@ inline Mesh make_floor_mesh(float y, float half) {
 }
 
 /// A scene holding the meshes as objects 0, 1, ... (one diffuse material).
-inline Scene make_mesh_scene(std::vector<Mesh> meshes) {
-    Scene s;
+inline SceneData make_mesh_scene(std::vector<MeshData> meshes) {
+    SceneData s;
     s.materials.push_back(Material{});
-    for (Mesh& m : meshes) {
+    for (MeshData& m : meshes) {
         Object o;
         o.kind = ShapeKind::mesh;
         o.shape = static_cast<uint32_t>(s.meshes.size());
@@ -154,12 +154,12 @@ inline Scene make_mesh_scene(std::vector<Mesh> meshes) {
 
 /// The closest hit of the ray over every triangle of every mesh object, no BVH: the float
 /// watertight test, ties to the smaller t, then object, then primitive (intersect_closest's rule).
-inline Hit brute_force_closest(const Scene& scene, const Ray& ray) {
+inline Hit brute_force_closest(const SceneData& scene, const Ray& ray) {
     Hit best;
     const WatertightRay wr = make_watertight_ray(ray);
     for (uint32_t o = 0; o < scene.objects.size(); ++o) {
         if (scene.objects[o].kind != ShapeKind::mesh) continue;
-        const Mesh& m = scene.meshes[scene.objects[o].shape];
+        const MeshData& m = scene.meshes[scene.objects[o].shape];
         for (uint32_t k = 0; k < m.tris.size(); ++k) {
             const uvec3 t3 = m.tris[k];
             float t, u, v;
@@ -179,7 +179,7 @@ inline Hit brute_force_closest(const Scene& scene, const Ray& ray) {
 
 /// intersect_closest of the packet path, W rays at a time, returned ray by ray.
 template <int W>
-std::vector<Hit> packet_closest(const Scene& scene, const Accel& accel,
+std::vector<Hit> packet_closest(const SceneData& scene, const Accel& accel,
                                 const std::vector<Ray>& rays) {
     std::vector<Hit> out(rays.size());
     for (size_t first = 0; first < rays.size(); first += W) {
@@ -194,7 +194,7 @@ std::vector<Hit> packet_closest(const Scene& scene, const Accel& accel,
 
 /// intersect_any of the packet path, W rays at a time.
 template <int W>
-std::vector<uint8_t> packet_any(const Scene& scene, const Accel& accel,
+std::vector<uint8_t> packet_any(const SceneData& scene, const Accel& accel,
                                 const std::vector<Ray>& rays) {
     std::vector<uint8_t> out(rays.size());
     for (size_t first = 0; first < rays.size(); first += W) {

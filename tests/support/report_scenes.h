@@ -7,8 +7,8 @@
 namespace raylane::test {
 
 /// scenes/builtin.json at 32x24 pixels.
-inline Scene tiny_builtin() {
-    Scene scene = load_scene(RAYLANE_SOURCE_DIR "/scenes/builtin.json");
+inline SceneData tiny_builtin() {
+    SceneData scene = load_scene(RAYLANE_SOURCE_DIR "/scenes/builtin.json");
     scene.camera.width = 32;
     scene.camera.height = 24;
     return scene;

@@ -8,7 +8,7 @@
 namespace raylane::test {
 
 /// `scene` rendered `width` pixels wide, its aspect ratio kept (at least one row).
-inline Scene small_scene(Scene scene, int width) {
+inline SceneData small_scene(SceneData scene, int width) {
     scene.camera.height = std::max(1, scene.camera.height * width / scene.camera.width);
     scene.camera.width = width;
     return scene;

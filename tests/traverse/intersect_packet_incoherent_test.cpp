@@ -31,7 +31,7 @@ constexpr int rays_per_kind = 100000;
 #endif
 
 struct Case {
-    Scene scene;
+    SceneData scene;
     Accel accel;
     std::vector<Ray> rays;
     std::vector<Hit> closest;

@@ -38,7 +38,7 @@ constexpr int ray_target = 1000000;
 #endif
 
 struct Loaded {
-    Scene scene;
+    SceneData scene;
     Accel accel;
 };
 
@@ -436,8 +436,8 @@ TYPED_TEST(IntersectPacket, MatchesScalarOnAwkwardRays) {
 }
 
 /// A UV sphere of triangles (rings x segments quads, two triangles each).
-Mesh tessellated_sphere(vec3 centre, float radius, int rings, int segments) {
-    Mesh m;
+MeshData tessellated_sphere(vec3 centre, float radius, int rings, int segments) {
+    MeshData m;
     m.name = "sphere";
     for (int i = 0; i <= rings; ++i) {
         const float theta = 3.14159265f * float(i) / float(rings);
@@ -563,7 +563,7 @@ TYPED_TEST(IntersectPacket, BlocksCullOnlyNodesBeyondEveryLanesLimit) {
     constexpr int W = TypeParam::value;
     Loaded l;
     l.scene.materials.resize(1);
-    Mesh three;
+    MeshData three;
     three.positions = {{-3.0f, -3.0f, 10.0f},   {2.0f, -3.0f, 10.0f},   {-0.5f, 6.0f, 10.0f},
                        {-0.5f, 0.0f, 9.995f},   {2.5f, 0.0f, 9.995f},   {1.0f, 3.0f, 9.995f},
                        {-1.0f, -0.0875f, 5.0f}, {1.0f, -0.0875f, 5.0f}, {0.0f, -1.0f, 5.0f}};

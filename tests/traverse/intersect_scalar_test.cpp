@@ -27,7 +27,7 @@ struct TriangleSoa {
     std::vector<float> p[3][3];  ///< p[vertex][axis][triangle]
 };
 
-TriangleSoa make_soa(const Mesh& mesh) {
+TriangleSoa make_soa(const MeshData& mesh) {
     TriangleSoa soa;
     for (auto& vertex : soa.p)
         for (auto& axis : vertex) axis.resize(mesh.tris.size());
@@ -114,7 +114,7 @@ TEST(IntersectScalar, ClosestHitEqualsBruteForceOnTheBunny) {
     if (!std::filesystem::exists(path)) {
         RAYLANE_MODEL_MISSING() << path << " not found";
     }
-    Scene scene;
+    SceneData scene;
     scene.meshes.push_back(load_mesh(path));
     scene.materials.push_back({});
     scene.objects.push_back({ShapeKind::mesh, 0, 0});
@@ -148,7 +148,7 @@ TEST(IntersectScalar, ClosestHitEqualsBruteForceOnTheBunny) {
 }
 
 TEST(IntersectScalar, EveryShapeKindThroughTheTopLevelEqualsBruteForce) {
-    Scene scene = make_builtin_scene();
+    SceneData scene = make_builtin_scene();
     const Accel accel = build_accel(scene, BuildParams{1});
     Aabb bounds;
     for (const Aabb& b : accel.object_bounds)
@@ -160,7 +160,7 @@ TEST(IntersectScalar, EveryShapeKindThroughTheTopLevelEqualsBruteForce) {
         // brute force: every object alone in its own scene
         Hit want;
         for (uint32_t o = 0; o < scene.objects.size(); ++o) {
-            Scene one = scene;
+            SceneData one = scene;
             one.objects = {scene.objects[o]};
             const Accel a1 = build_accel(one, BuildParams{});
             Hit h = intersect_closest(one, a1, rays[i]);
@@ -179,7 +179,7 @@ TEST(IntersectScalar, EveryShapeKindThroughTheTopLevelEqualsBruteForce) {
 }
 
 TEST(IntersectScalar, EmptySceneHitsNothing) {
-    Scene scene;
+    SceneData scene;
     const Accel accel = build_accel(scene, BuildParams{});
     Ray ray;
     EXPECT_FALSE(intersect_closest(scene, accel, ray).hit());
@@ -187,7 +187,7 @@ TEST(IntersectScalar, EmptySceneHitsNothing) {
 }
 
 TEST(IntersectScalar, RespectsTheRayInterval) {
-    Scene scene;
+    SceneData scene;
     scene.materials.push_back({});
     scene.spheres.push_back({vec3(0.0f, 0.0f, 5.0f), 1.0f});
     scene.objects.push_back({ShapeKind::sphere, 0, 0});
@@ -204,7 +204,7 @@ TEST(IntersectScalar, RespectsTheRayInterval) {
 }
 
 TEST(IntersectScalar, TransformedSphereMovesWithItsTransform) {
-    Scene scene;
+    SceneData scene;
     scene.materials.push_back({});
     scene.spheres.push_back({vec3(0.0f), 1.0f});
     Object o{ShapeKind::sphere, 0, 0};
@@ -227,7 +227,7 @@ TEST(IntersectScalar, TransformedSphereMovesWithItsTransform) {
 /// a normal map): the same normal and position either way, uv 0 otherwise (no acos / atan2).
 TEST(IntersectScalar, SurfaceUvOnlyForMaterialsThatReadIt) {
     for (ShapeKind kind : {ShapeKind::sphere, ShapeKind::cylinder}) {
-        Scene scene;
+        SceneData scene;
         scene.materials.resize(3);
         scene.materials[1].texture = 0;
         scene.materials[2].normal_map = 0;

@@ -33,7 +33,7 @@ struct RayHit {
 };
 
 /// The camera rays of a width x height image that hit something, in image order.
-std::vector<RayHit> camera_hits(Scene& scene, const Accel& accel, int width, int height) {
+std::vector<RayHit> camera_hits(SceneData& scene, const Accel& accel, int width, int height) {
     scene.camera.width = width;
     scene.camera.height = height;
     const CameraFrame frame = make_camera_frame(scene.camera);
@@ -51,7 +51,7 @@ std::vector<RayHit> camera_hits(Scene& scene, const Accel& accel, int width, int
 /// Packets of up to W consecutive entries of `hits`; with `one_object`, a packet also ends where
 /// the object changes. `mixed` counts the lanes on another object than their packet's first.
 template <int W>
-void check_packets(const Scene& scene, const std::vector<RayHit>& hits, bool one_object,
+void check_packets(const SceneData& scene, const std::vector<RayHit>& hits, bool one_object,
                    const std::string& what, int& mixed) {
     mixed = 0;
     for (size_t first = 0; first < hits.size();) {
@@ -98,7 +98,7 @@ void check_packets(const Scene& scene, const std::vector<RayHit>& hits, bool one
 }
 
 /// The apple beside the bunny, on a floor: two meshes, one with normals and uvs, one without.
-Scene two_meshes() {
+SceneData two_meshes() {
     return load_scene_from_string(R"({
       "version": 1,
       "camera": {"position": [0, 0.6, -2.2], "look_at": [0, 0.1, 0], "fov_deg": 50,
@@ -120,7 +120,7 @@ Scene two_meshes() {
 TYPED_TEST(SurfaceAtPacket, SameSurfaceAsTheScalarPath) {
     constexpr int W = TypeParam::value;
     for (const std::string name : {"fig07b_apple_normal_map", "two meshes", "builtin"}) {
-        Scene scene;
+        SceneData scene;
         if (name == "builtin")
             scene = make_builtin_scene();
         else if (name == "two meshes")
@@ -151,10 +151,10 @@ TYPED_TEST(SurfaceAtPacket, SameSurfaceAsTheScalarPath) {
 /// The apple's triangles have their own normal and uv indices: the gathered path must read
 /// them, not the position indices (a mesh without them would not tell the two apart).
 TEST(SurfaceAtPacketApple, HasNormalsAndUvsOfItsOwn) {
-    const Scene scene =
+    const SceneData scene =
         load_scene(std::string(RAYLANE_SOURCE_DIR) + "/scenes/fig07b_apple_normal_map.json");
     bool found = false;
-    for (const Mesh& m : scene.meshes) {
+    for (const MeshData& m : scene.meshes) {
         if (m.normal_tris.empty() || m.uv_tris.empty()) continue;
         found = true;
         size_t differ = 0;
