@@ -40,8 +40,8 @@ _raylane() {
     ((cword > 0)) && prev=${COMP_WORDS[cword - 1]}
     COMPREPLY=()
 
-    local commands="render info compare report scene assemble"
-    local help_options="-h --help --help-all"
+    local -a commands=(render info compare report scene assemble)
+    local -a help_options=(-h --help --help-all)
     # the options of each command, and those that take a value
     local -A options=(
         [render]="-o --output --exr-float --spp --threads --width --height --aov --seed --path
@@ -62,14 +62,16 @@ _raylane() {
     # the command: the first word after raylane
     if ((cword <= 1)); then
         if [[ $cur == -* ]]; then
-            _raylane_values "" $help_options --version
+            _raylane_values "" "${help_options[@]}" --version
         else
-            _raylane_values "" $commands
+            _raylane_values "" "${commands[@]}"
         fi
         return 0
     fi
     local command=${COMP_WORDS[1]}
     [[ -n ${options[$command]+set} ]] || return 0
+    local -a command_options
+    read -d '' -ra command_options <<<"${options[$command]}"
 
     # --option=value: bash splits the word at '=' (COMP_WORDBREAKS)
     if [[ $cur == "=" ]]; then
@@ -110,7 +112,7 @@ _raylane() {
     fi
 
     if [[ $cur == -* ]]; then
-        _raylane_values "" ${options[$command]} $help_options
+        _raylane_values "" "${command_options[@]}" "${help_options[@]}"
         return 0
     fi
 
