@@ -42,7 +42,7 @@ _raylane() {
 
     local -a commands=(render info compare report scene assemble)
     local -a help_options=(-h --help --help-all)
-    # the options of each command, and those that take a value
+    # the options of each command, besides help_options
     local -A options=(
         [render]="-o --output --exr-float --spp --threads --width --height --aov --seed --path
                   --bvh --frames --crop --tile -q --quiet --strict --isa"
@@ -54,10 +54,14 @@ _raylane() {
         [scene]="--isa"
         [assemble]="-o --output --exr-float --threads --isa"
     )
-    local takes_value=" -o --output --spp --threads --width --height --aov --seed --path --bvh
-        --frames --crop --tile --isa --tolerance --id-allowance --repeats --out-dir
-        --reference-spp --reference-path --spp-list --paths "
-    takes_value=${takes_value//$'\n'/ }
+    # the options that take a value (the next word, or the text after '=')
+    local -A takes_value=()
+    local option
+    for option in -o --output --spp --threads --width --height --aov --seed --path --bvh --frames \
+        --crop --tile --isa --tolerance --id-allowance --repeats --out-dir --reference-spp \
+        --reference-path --spp-list --paths; do
+        takes_value[$option]=1
+    done
 
     # the command: the first word after raylane
     if ((cword <= 1)); then
@@ -87,8 +91,13 @@ _raylane() {
         [[ ${COMP_WORDS[i]} == -* ]] && break
     done
 
-    if [[ $takes_value == *" $prev "* && " ${options[$command]} " == *" $prev "* ]]; then
-        case $prev in
+    # the word after an option of this command that takes a value
+    local value_of=""
+    for option in "${command_options[@]}"; do
+        [[ $option == "$prev" && -n ${takes_value[$option]+set} ]] && value_of=$option
+    done
+    if [[ -n $value_of ]]; then
+        case $value_of in
             --isa) _raylane_values "" sse4.2 avx2 avx512 ;;
             --aov) _raylane_values "" color normal depth bvh-cost all ;;
             --path | --reference-path) _raylane_values "" packet scalar ;;
