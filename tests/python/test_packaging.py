@@ -185,6 +185,25 @@ def test_the_completion_offers_the_values_of_options_with_a_fixed_set():
     assert not problems, "\n".join(problems)
 
 
+def test_the_completion_knows_which_options_take_a_value(tmp_path):
+    # after a flag comes what the command takes alone; after an option's value type in the help
+    # (--spp INT, --aov TEXT:{...}) comes its value: no scene or part, an image for -o
+    (tmp_path / "a.json").write_text("")
+    (tmp_path / "b.exr").write_text("")
+    problems = []
+    for command in program_commands():
+        alone = complete("raylane", command, "", cwd=tmp_path)
+        for name, entry in program_options(command).items():
+            offered = complete("raylane", command, name, "", cwd=tmp_path)
+            if re.match(r"^  -\S+ \S", entry):
+                files = {"a.json"} if name in ("-o", "--output") else {"a.json", "b.exr"}
+                if files & set(offered):
+                    problems.append(f"raylane {command} {name} takes a value, offered {offered}")
+            elif offered != alone:
+                problems.append(f"raylane {command} {name} is a flag, offered {offered}")
+    assert not problems, "\n".join(problems)
+
+
 def test_the_completion_completes_a_word_begun():
     assert complete("raylane", "re") == ["render", "report"]
     assert complete("raylane", "render", "--is") == ["--isa"]
