@@ -10,6 +10,8 @@ packages+=(libopenmpi-dev openmpi-bin procps)
 packages+=(qemu-user binutils)
 # the Python module (python/), its tests and the examples of docs/python.md
 packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
+# `pip install .` offline in a virtual environment (docs/building.md, "pip install")
+packages+=(python3-venv python3-setuptools python3-wheel python3-pip)
 # the man page check of tests/python/test_packaging.py (groff)
 packages+=(groff-base)
 # Embree is only for the baseline benchmark; the renderer never links it.
