@@ -16,6 +16,11 @@ sys.path.insert(0, os.path.join(SOURCE_DIR, "bench", "python"))
 from ray_queries import random_rays  # noqa: E402,F401 (the tests import it from here)
 
 
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "slow: may build the module from nothing (minutes); -m 'not slow' skips it")
+
+
 def scene_path(name):
     return os.path.join(SOURCE_DIR, "scenes", name)
 
