@@ -1,30 +1,20 @@
 // python: raylane.Mesh and raylane.load_mesh: ray queries against a triangle mesh from NumPy
-// arrays (query/intersect_batch.h), and raylane.save_rays, the ray file of bench_intersect.
+// arrays, over the library's raylane::Mesh (raylane/mesh.h), and raylane.save_rays, the ray
+// file of bench_intersect.
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include "app/commands.h"
-#include "core/error.h"
-#include "io/load_mesh.h"
-#include "io/model_path.h"
 #include "python/bindings.h"
-#include "query/intersect_batch.h"
+#include "raylane/error.h"
+#include "raylane/mesh.h"
 
 namespace raylane::python {
 namespace {
-
-/// A mesh as a scene of one object (so that every query goes through the same code as a
-/// render), and its BVHs.
-struct MeshHandle {
-    SceneData scene;
-    Accel accel;
-    TriangleNormals normals;  ///< the triangles' unit normals, Mesh.intersect's `normal`
-    double build_ms = 0.0;
-};
 
 std::string shape_text(const py::array& a) {
     std::string s = "(";
@@ -93,25 +83,8 @@ bool read_index_row(const py::array& a, py::ssize_t i, int64_t (&row)[3]) {
     return true;
 }
 
-std::shared_ptr<MeshHandle> make_handle(MeshData mesh) {
-    auto h = std::make_shared<MeshHandle>();
-    py::gil_scoped_release release;
-    const double t = now_seconds();
-    h->scene.materials.push_back(Material{});
-    if (!mesh.tris.empty()) {
-        Object object;
-        object.kind = ShapeKind::mesh;
-        h->scene.objects.push_back(object);
-    }
-    h->scene.meshes.push_back(std::move(mesh));
-    h->accel = build_accel(h->scene, BuildParams{});
-    h->normals = make_triangle_normals(h->scene);
-    h->build_ms = elapsed_ms(t);
-    return h;
-}
-
-std::shared_ptr<MeshHandle> mesh_from_arrays(const py::object& vertices_obj,
-                                             const py::object& triangles_obj) {
+std::shared_ptr<Mesh> mesh_from_arrays(const py::object& vertices_obj,
+                                       const py::object& triangles_obj) {
     const py::array vertices = as_array(vertices_obj, "vertices");
     const py::array triangles = as_array(triangles_obj, "triangles");
     require_shape(vertices, "vertices", 3);
@@ -126,18 +99,12 @@ std::shared_ptr<MeshHandle> mesh_from_arrays(const py::object& vertices_obj,
     const py::ssize_t n = vertices.shape(0), m = triangles.shape(0);
     if (n > py::ssize_t(UINT32_MAX))
         throw BadArgument(join("vertices: ", std::to_string(n), " rows, more than 2^32 - 1"));
-    MeshData mesh;
-    mesh.name = "<arrays>";
-    mesh.positions.resize(size_t(n));
-    for (py::ssize_t i = 0; i < n; ++i) {
-        vec3& p = mesh.positions[size_t(i)];
-        for (py::ssize_t j = 0; j < 3; ++j) p[int(j)] = element<float, float>(vertices, i, j);
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw BadArgument(join("vertices: row ", std::to_string(i), " is not finite (",
-                                   std::to_string(p.x), ", ", std::to_string(p.y), ", ",
-                                   std::to_string(p.z), ")"));
-    }
-    mesh.tris.resize(size_t(m));
+    // copied once into the library's layout: float32 (N, 3) and uint32 (M, 3), row by row
+    std::vector<float> points(size_t(n) * 3);
+    for (py::ssize_t i = 0; i < n; ++i)
+        for (py::ssize_t j = 0; j < 3; ++j)
+            points[size_t(3 * i + j)] = element<float, float>(vertices, i, j);
+    std::vector<uint32_t> corners(size_t(m) * 3);
     for (py::ssize_t i = 0; i < m; ++i) {
         int64_t row[3];
         read_index_row(triangles, i, row);
@@ -151,29 +118,26 @@ std::shared_ptr<MeshHandle> mesh_from_arrays(const py::object& vertices_obj,
                 throw BadArgument(
                     msg.append(" (vertices has ").append(std::to_string(n)).append(" rows)"));
             }
-            mesh.tris[size_t(i)][j] = static_cast<uint32_t>(row[j]);
+            corners[size_t(3 * i + j)] = static_cast<uint32_t>(row[j]);
         }
     }
-    return make_handle(std::move(mesh));
+    py::gil_scoped_release release;
+    return std::make_shared<Mesh>(points.data(), size_t(n), corners.data(), size_t(m));
 }
 
-std::shared_ptr<MeshHandle> load_mesh_file(const std::string& path) {
+std::shared_ptr<Mesh> load_mesh_file(const std::string& path) {
     std::string file = path;
     std::error_code ec;
     if (!std::filesystem::exists(path, ec) && std::filesystem::path(path).is_relative()) {
         try {  // a model name on RAYLANE_MODEL_PATH, as scenes name them
-            file = find_model(path, ".");
-        } catch (const InputError& e) {
+            file = find_model(path);
+        } catch (const Error& e) {
             throw MissingFile(e.what());
         }
     }
     require_file(file);
-    MeshData mesh;
-    {
-        py::gil_scoped_release release;
-        mesh = load_mesh(file);
-    }
-    return make_handle(std::move(mesh));
+    py::gil_scoped_release release;
+    return std::make_shared<Mesh>(Mesh::load(file));
 }
 
 /// An (N, cols) array of rays' floats: read in place when it is float32 with its columns next
@@ -205,7 +169,7 @@ FloatRows float_rows(const py::object& obj, const char* name, py::ssize_t cols) 
 /// The rays of intersect / occluded: (origins, directions) or one (N, 6) array, and t_max as a
 /// number or an (N,) array.
 struct RayInput {
-    RayArrays rays;
+    Rays rays;
     FloatRows org, dir, t_max;
 };
 
@@ -214,19 +178,19 @@ RayInput ray_input(const py::object& origins, const py::object& directions,
     RayInput in;
     if (directions.is_none()) {
         in.org = float_rows(origins, "rays", 6);
-        in.rays.org = in.org.data;
-        in.rays.dir = in.org.data + 3;
-        in.rays.org_stride = in.rays.dir_stride = in.org.stride;
+        in.rays.origins = in.org.data;
+        in.rays.directions = in.org.data + 3;
+        in.rays.origin_stride = in.rays.direction_stride = in.org.stride * sizeof(float);
     } else {
         in.org = float_rows(origins, "origins", 3);
         in.dir = float_rows(directions, "directions", 3);
         if (in.org.rows != in.dir.rows)
             throw BadArgument(join("origins and directions: ", std::to_string(in.org.rows), " and ",
                                    std::to_string(in.dir.rows), " rows, expected the same"));
-        in.rays.org = in.org.data;
-        in.rays.dir = in.dir.data;
-        in.rays.org_stride = in.org.stride;
-        in.rays.dir_stride = in.dir.stride;
+        in.rays.origins = in.org.data;
+        in.rays.directions = in.dir.data;
+        in.rays.origin_stride = in.org.stride * sizeof(float);
+        in.rays.direction_stride = in.dir.stride * sizeof(float);
     }
     in.rays.count = in.org.rows;
     if (py::isinstance<py::array>(tmax)) {
@@ -247,91 +211,138 @@ RayInput ray_input(const py::object& origins, const py::object& directions,
     return in;
 }
 
-BatchParams batch_params(const std::string& path, const py::object& coherent, int threads) {
-    BatchParams p;
+QuerySettings query_settings(const std::string& path, const py::object& coherent, int threads) {
+    QuerySettings q;
     if (path == "scalar")
-        p.path = BatchPath::scalar;
+        q.path = TracePath::scalar;
     else if (path != "packet")
         throw BadArgument(join("path: unknown path \"", path, "\" (use packet or scalar)"));
     if (!coherent.is_none())
-        p.coherence = coherent.cast<bool>() ? Coherence::coherent : Coherence::incoherent;
+        q.coherence = coherent.cast<bool>() ? Coherence::coherent : Coherence::incoherent;
     if (threads < 0 || threads > 1024)
         throw BadArgument(join("threads: ", std::to_string(threads), " is outside 0 .. 1024"));
-    p.threads = threads;
-    return p;
+    q.threads = threads;
+    return q;
 }
 
-py::dict intersect(const MeshHandle& h, const py::object& origins, const py::object& directions,
+/// out[key] as T*, checked: a C-contiguous, writeable array of dtype T and shape (n,) or, with
+/// cols > 0, (n, cols).
+template <class T>
+T* out_array(const py::handle& obj, const std::string& name, size_t n, py::ssize_t cols) {
+    const std::string shape = cols > 0
+                                  ? join("(", std::to_string(n), ", ", std::to_string(cols), ")")
+                                  : join("(", std::to_string(n), ",)");
+    const std::string expected = join(py::str(py::dtype::of<T>()).cast<std::string>(), " ", shape);
+    if (!py::isinstance<py::array>(obj))
+        throw BadArgument(join(name, ": expected a NumPy array (", expected, "), got ",
+                               py::str(py::type::of(obj).attr("__name__")).cast<std::string>()));
+    auto a = py::reinterpret_borrow<py::array>(obj);
+    const bool shape_ok = cols > 0 ? a.ndim() == 2 && size_t(a.shape(0)) == n && a.shape(1) == cols
+                                   : a.ndim() == 1 && size_t(a.shape(0)) == n;
+    if (!a.dtype().is(py::dtype::of<T>()) || !shape_ok)
+        throw BadArgument(
+            join(name, ": ", dtype_text(a), " ", shape_text(a), ", expected ", expected));
+    if (!(a.flags() & py::array::c_style))
+        throw BadArgument(join(name, ": not C-contiguous (use numpy.ascontiguousarray)"));
+    if (!a.writeable()) throw BadArgument(join(name, ": read-only"));
+    return static_cast<T*>(a.mutable_data());
+}
+
+py::dict intersect(const Mesh& mesh, const py::object& origins, const py::object& directions,
                    const py::object& tmax, const std::string& path, const py::object& coherent,
-                   int threads) {
-    const BatchParams params = batch_params(path, coherent, threads);
+                   int threads, const py::object& out) {
+    const QuerySettings settings = query_settings(path, coherent, threads);
     const RayInput in = ray_input(origins, directions, tmax);
-    const auto n = static_cast<py::ssize_t>(in.rays.count);
-    py::array_t<float> t(n), u(n), v(n), normal({n, py::ssize_t(3)});
-    py::array_t<int32_t> prim(n);
-    HitBuffers out;
-    out.t = t.mutable_data(), out.u = u.mutable_data(), out.v = v.mutable_data();
-    out.prim = prim.mutable_data(), out.normal = normal.mutable_data();
+    const size_t n = in.rays.count;
+    py::dict d;
+    Hits hits;
+    if (out.is_none()) {
+        const auto rows = static_cast<py::ssize_t>(n);
+        py::array_t<float> t(rows), u(rows), v(rows), normal({rows, py::ssize_t(3)});
+        py::array_t<int32_t> prim(rows);
+        hits.t = t.mutable_data(), hits.u = u.mutable_data(), hits.v = v.mutable_data();
+        hits.triangle = prim.mutable_data(), hits.normal = normal.mutable_data();
+        d["t"] = t, d["prim"] = prim, d["u"] = u, d["v"] = v, d["normal"] = normal;
+    } else {
+        if (!py::isinstance<py::dict>(out))
+            throw BadArgument("out: expected a dict of arrays (t, prim, u, v, normal)");
+        d = py::reinterpret_borrow<py::dict>(out);
+        for (const auto& item : d) {
+            const std::string key = py::str(item.first).cast<std::string>();
+            const std::string name = join("out['", key, "']");
+            if (key == "t")
+                hits.t = out_array<float>(item.second, name, n, 0);
+            else if (key == "prim")
+                hits.triangle = out_array<int32_t>(item.second, name, n, 0);
+            else if (key == "u")
+                hits.u = out_array<float>(item.second, name, n, 0);
+            else if (key == "v")
+                hits.v = out_array<float>(item.second, name, n, 0);
+            else if (key == "normal")
+                hits.normal = out_array<float>(item.second, name, n, 3);
+            else
+                throw BadArgument(join("out: unknown key '", key, "' (t, prim, u, v, normal)"));
+        }
+    }
     {
         py::gil_scoped_release release;
-        intersect_closest_batch(h.scene, h.accel, in.rays, out, params, &h.normals);
+        mesh.intersect(in.rays, hits, settings);
     }
-    py::dict d;
-    d["t"] = t, d["prim"] = prim, d["u"] = u, d["v"] = v, d["normal"] = normal;
     return d;
 }
 
-py::array occluded(const MeshHandle& h, const py::object& origins, const py::object& directions,
+py::array occluded(const Mesh& mesh, const py::object& origins, const py::object& directions,
                    const py::object& tmax, const std::string& path, const py::object& coherent,
-                   int threads) {
-    const BatchParams params = batch_params(path, coherent, threads);
+                   int threads, const py::object& out) {
+    const QuerySettings settings = query_settings(path, coherent, threads);
     const RayInput in = ray_input(origins, directions, tmax);
-    py::array_t<bool> result(static_cast<py::ssize_t>(in.rays.count));
+    py::array result = out.is_none() ? py::array_t<bool>(static_cast<py::ssize_t>(in.rays.count))
+                                     : py::reinterpret_borrow<py::array>(out);
     static_assert(sizeof(bool) == 1);
-    auto* out = reinterpret_cast<uint8_t*>(result.mutable_data());
+    auto* flags = reinterpret_cast<uint8_t*>(out_array<bool>(result, "out", in.rays.count, 0));
     {
         py::gil_scoped_release release;
-        intersect_any_batch(h.scene, h.accel, in.rays, out, params);
+        mesh.occluded(in.rays, flags, settings);
     }
     return result;
 }
 
 void save_rays(const std::string& path, const py::object& origins, const py::object& directions) {
-    const RayInput in = ray_input(origins, directions, py::float_(infinity));
+    const RayInput in = ray_input(origins, directions, py::float_(1.0f));
     const auto n = static_cast<py::ssize_t>(in.rays.count);
     py::array_t<float> rays({n, py::ssize_t(6)});
     float* out = rays.mutable_data();
+    const size_t org_stride = in.rays.origin_stride / sizeof(float);
+    const size_t dir_stride = in.rays.direction_stride / sizeof(float);
     for (size_t i = 0; i < in.rays.count; ++i) {
         for (int k = 0; k < 3; ++k) {
-            out[6 * i + size_t(k)] = in.rays.org[i * in.rays.org_stride + size_t(k)];
-            out[6 * i + 3 + size_t(k)] = in.rays.dir[i * in.rays.dir_stride + size_t(k)];
+            out[6 * i + size_t(k)] = in.rays.origins[i * org_stride + size_t(k)];
+            out[6 * i + 3 + size_t(k)] = in.rays.directions[i * dir_stride + size_t(k)];
         }
     }
     py::module_::import("numpy").attr("save")(path, rays);
 }
 
-py::array vertex_array(const MeshHandle& h) {
-    const MeshData& m = h.scene.meshes[0];
-    py::array_t<float> a({py::ssize_t(m.positions.size()), py::ssize_t(3)});
-    if (!m.positions.empty())
-        std::memcpy(a.mutable_data(), m.positions.data(), m.positions.size() * sizeof(vec3));
+py::array vertex_array(const Mesh& mesh) {
+    py::array_t<float> a({py::ssize_t(mesh.vertex_count()), py::ssize_t(3)});
+    if (mesh.vertex_count() > 0)
+        std::memcpy(a.mutable_data(), mesh.vertices(), mesh.vertex_count() * 3 * sizeof(float));
     return a;
 }
 
-py::array triangle_array(const MeshHandle& h) {
-    const MeshData& m = h.scene.meshes[0];
-    py::array_t<int32_t> a({py::ssize_t(m.tris.size()), py::ssize_t(3)});
+py::array triangle_array(const Mesh& mesh) {
+    py::array_t<int32_t> a({py::ssize_t(mesh.triangle_count()), py::ssize_t(3)});
     int32_t* out = a.mutable_data();
-    for (size_t i = 0; i < m.tris.size(); ++i)
-        for (int k = 0; k < 3; ++k) out[3 * i + size_t(k)] = static_cast<int32_t>(m.tris[i][k]);
+    const uint32_t* in = mesh.triangles();
+    for (size_t i = 0; i < 3 * mesh.triangle_count(); ++i) out[i] = static_cast<int32_t>(in[i]);
     return a;
 }
 
 }  // namespace
 
 void add_mesh(py::module_& m) {
-    const float inf = infinity;
-    py::class_<MeshHandle, std::shared_ptr<MeshHandle>>(
+    const float inf = std::numeric_limits<float>::infinity();
+    py::class_<Mesh, std::shared_ptr<Mesh>>(
         m, "Mesh",
         "A triangle mesh and its BVHs, for ray queries on the packet path (or the scalar path, "
         "the reference).")
@@ -340,26 +351,26 @@ void add_mesh(py::module_& m) {
              "array of vertex indices (copied once; any strides).")
         .def("intersect", &intersect, py::arg("origins"), py::arg("directions") = py::none(),
              py::arg("tmax") = inf, py::kw_only(), py::arg("path") = "packet",
-             py::arg("coherent") = py::none(), py::arg("threads") = 0,
+             py::arg("coherent") = py::none(), py::arg("threads") = 0, py::arg("out") = py::none(),
              "Closest hits in (0, tmax) of rays given as (N, 3) origins and directions, or one "
              "(N, 6) array. Returns a dict of arrays: t (float32, inf on a miss), prim (int32 "
              "triangle index, -1 on a miss), u, v (barycentrics of the second and third "
-             "corners), normal ((N, 3) unit geometric normal, 0 on a miss).")
+             "corners), normal ((N, 3) unit geometric normal, 0 on a miss). With out= (a dict of "
+             "C-contiguous arrays under some of those keys, of those dtypes and shapes) the hits "
+             "are written into them, the others are not computed, and out is returned: repeated "
+             "calls allocate nothing.")
         .def("occluded", &occluded, py::arg("origins"), py::arg("directions") = py::none(),
              py::arg("tmax") = inf, py::kw_only(), py::arg("path") = "packet",
-             py::arg("coherent") = py::none(), py::arg("threads") = 0,
-             "Whether each ray hits anything in (0, tmax): a bool array.")
+             py::arg("coherent") = py::none(), py::arg("threads") = 0, py::arg("out") = py::none(),
+             "Whether each ray hits anything in (0, tmax): a bool array (N,), or out= (a "
+             "C-contiguous bool array (N,)) written and returned.")
         .def_property_readonly("vertices", &vertex_array, "(N, 3) float32 copy of the vertices")
         .def_property_readonly("triangles", &triangle_array, "(M, 3) int32 copy of the indices")
-        .def_property_readonly("triangle_count",
-                               [](const MeshHandle& h) { return h.scene.meshes[0].tris.size(); })
-        .def_property_readonly(
-            "build_ms", [](const MeshHandle& h) { return h.build_ms; },
-            "milliseconds taken to build the BVHs")
-        .def("__repr__", [](const MeshHandle& h) {
-            std::string r = "<raylane.Mesh ";
-            r.append(std::to_string(h.scene.meshes[0].positions.size())).append(" vertices, ");
-            return r.append(std::to_string(h.scene.meshes[0].tris.size())).append(" triangles>");
+        .def_property_readonly("triangle_count", &Mesh::triangle_count, "number of triangles")
+        .def_property_readonly("build_ms", &Mesh::build_ms, "milliseconds taken to build the BVHs")
+        .def("__repr__", [](const Mesh& mesh) {
+            return join("<raylane.Mesh ", std::to_string(mesh.vertex_count()), " vertices, ",
+                        std::to_string(mesh.triangle_count()), " triangles>");
         });
     m.def("load_mesh", &load_mesh_file, py::arg("path"),
           "Loads an OBJ or PLY model (.obj, .ply, optionally .gz) as a Mesh; a relative name "

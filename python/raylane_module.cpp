@@ -3,52 +3,26 @@
 // command line's one-line message; missing files FileNotFoundError.
 #include <filesystem>
 
-#include "core/error.h"
-#include "core/isa.h"
 #include "python/bindings.h"
+#include "raylane/raylane.h"
 
 namespace raylane::python {
-
-namespace {
-
-py::list isa_names(const std::vector<Isa>& sets) {
-    py::list names;
-    for (Isa isa : sets) names.append(isa_name(isa));
-    return names;
-}
-
-}  // namespace
 
 void add_isa(py::module_& m) {
     m.def(
         "instruction_sets",
         [] {
-            std::vector<Isa> compiled, cpu;
-            for (Isa isa : all_isas) {
-                if (isa_compiled(isa)) compiled.push_back(isa);
-                if (cpu_runs(isa)) cpu.push_back(isa);
-            }
-            const Isa in_use = active_isa();
             py::dict d;
-            d["compiled"] = isa_names(compiled);
-            d["cpu"] = isa_names(cpu);
-            d["in_use"] = isa_name(in_use);
-            d["packet_width"] = isa_width(in_use);
+            d["compiled"] = compiled_instruction_sets();
+            d["cpu"] = cpu_instruction_sets();
+            d["in_use"] = instruction_set();
+            d["packet_width"] = packet_width();
             return d;
         },
         "The packet path's instruction sets: 'compiled' (in this module), 'cpu' (those this CPU "
         "runs), 'in_use' (RAYLANE_ISA's, or use_isa's, else the widest) and its 'packet_width'.");
     m.def(
-        "use_isa",
-        [](const std::string& name) {
-            if (name.empty())  // use_isa_named leaves the choice as it is for an empty name
-                throw InputError(
-                    join("use_isa: unknown instruction set '' (sets: sse4.2, avx2, "
-                         "avx512; this machine runs: ",
-                         runnable_isa_names(), ")"));
-            use_isa_named(name, "use_isa");
-        },
-        py::arg("name"),
+        "use_isa", [](const std::string& name) { use_instruction_set(name); }, py::arg("name"),
         "Uses the instruction set `name` ('sse4.2', 'avx2' or 'avx512') from now on; "
         "raylane.Error (a ValueError) when it is unknown or this CPU does not run it.");
 }
@@ -66,8 +40,8 @@ PYBIND11_MODULE(raylane, m) {
     m.doc() =
         "Raylane: scenes rendered to NumPy images, and ray queries against triangle meshes on "
         "the SIMD packet path. See docs/python.md.";
-    m.attr("__version__") = RAYLANE_VERSION;
-    py::register_exception<raylane::InputError>(m, "Error", PyExc_ValueError);
+    m.attr("__version__") = raylane::version();
+    py::register_exception<raylane::Error>(m, "Error", PyExc_ValueError);
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);

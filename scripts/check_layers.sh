@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 declare -A rank=([simd]=0 [core]=1 [scene]=2 [image]=3 [io]=3 [accel]=3 [traverse]=4 [shade]=5 [query]=5
-                 [render]=6 [report]=7 [distribute]=8 [app]=9 [python]=9)
+                 [render]=6 [report]=7 [distribute]=8 [api]=8 [app]=9 [python]=9)
 bad=0
 while IFS= read -r file; do
     case "$file" in

@@ -4,8 +4,11 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "accel/bvh.h"   // build_params, for --bvh
-#include "core/clock.h"  // now_seconds, elapsed_ms: the commands time their stages
+#include "accel/bvh.h"         // build_params, for --bvh
+#include "core/clock.h"        // now_seconds, elapsed_ms: the commands time their stages
+#include "core/threads.h"      // worker_threads, for --threads
+#include "io/open_scene.h"     // scene_file_problem, for scene arguments
+#include "scene/resolution.h"  // apply_resolution, for --width and --height
 #include "scene/scene.h"
 
 namespace raylane {
@@ -31,9 +34,6 @@ void add_isa_option(CLI::App* cmd, std::string& isa);
 void add_bvh_option(CLI::App* cmd, std::string& bvh);
 /// Adds --threads to a command: 1 to 1024 worker threads (0, the default, is all).
 void add_threads_option(CLI::App* cmd, int& threads);
-/// The threads a command runs on for --threads `requested`: at most as many as this machine
-/// runs at once (oneTBB would ignore more, and say so in two lines on stderr); 0 stays 0 (all).
-int worker_threads(int requested);
 /// Checks that an option's value is a finite number >= 0 (CLI::Range lets NaN through and
 /// prints its bounds in full).
 CLI::Validator finite_non_negative();
@@ -55,17 +55,7 @@ CLI::Validator image_output();
 /// empty when every one is known.
 std::string unknown_option(const CLI::App& cmd, int argc, char** argv);
 
-/// Applies --width/--height to the camera; one alone keeps the aspect ratio.
-void apply_resolution(Camera& camera, int width, int height);
-
-/// The scene a command works on: the built-in scene when `path` is empty, a model file's own
-/// scene (io/model_scene.h) for .obj and .ply, else a JSON scene file. A file that is none of
-/// these (no .json extension and not a JSON object) throws InputError saying what was expected;
-/// a path that is missing or a folder throws scene_file_problem's line.
+/// The scene a command works on (io/open_scene.h's open_scene), its warnings printed on stderr.
 SceneData load_command_scene(const std::string& path);
-
-/// Why `path` cannot be a scene or a model: "no such file", "is a folder, not a scene (.json) or a
-/// model (.obj, .ply)", ...; empty when it is a file. The command line and Python say the same.
-std::string scene_file_problem(const std::string& path);
 
 }  // namespace raylane

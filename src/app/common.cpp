@@ -19,8 +19,7 @@
 #include "core/error.h"
 #include "core/isa.h"
 #include "image/film.h"
-#include "io/load_scene.h"
-#include "io/model_scene.h"
+#include "io/open_scene.h"
 
 namespace raylane {
 
@@ -42,10 +41,6 @@ void add_threads_option(CLI::App* cmd, int& threads) {
         ->check(whole_in(1, 1024));
 }
 
-int worker_threads(int requested) {
-    return requested > 0 ? std::min(requested, tbb::info::default_concurrency()) : requested;
-}
-
 CLI::Validator finite_non_negative() {
     return CLI::Validator(
         [](std::string& text) -> std::string {
@@ -57,16 +52,6 @@ CLI::Validator finite_non_negative() {
             return {};
         },
         "NUMBER >= 0", "finite_non_negative");
-}
-
-std::string scene_file_problem(const std::string& path) {
-    std::error_code error;
-    const std::filesystem::file_status status = std::filesystem::status(path, error);
-    if (std::filesystem::is_regular_file(status)) return {};
-    if (std::filesystem::is_directory(status))
-        return "is a folder, not a scene (.json) or a model (.obj, .ply)";
-    if (std::filesystem::exists(status)) return "is not a regular file (a device, pipe or socket)";
-    return "no such file";
 }
 
 CLI::Validator existing_scene_file() {
@@ -179,57 +164,11 @@ std::string version_text() {
     return text;
 }
 
-namespace {
-
-bool has_extension(const std::string& path, const std::string& ext) {
-    std::string e = std::filesystem::path(path).extension().string();
-    std::transform(e.begin(), e.end(), e.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return e == ext;
-}
-
-/// Whether the file's first character that is not white space is '{' (a JSON object).
-bool starts_like_json(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    char c = 0;
-    while (in.get(c))
-        if (!std::isspace(static_cast<unsigned char>(c))) return c == '{';
-    return false;
-}
-
-}  // namespace
-
 SceneData load_command_scene(const std::string& path) {
-    if (path.empty()) return make_builtin_scene();
-    if (const std::string problem = scene_file_problem(path); !problem.empty())
-        throw InputError(path + ": " + problem);
-    if (!is_model_file(path) && !has_extension(path, ".json") && !starts_like_json(path))
-        throw InputError(path +
-                         ": neither a scene nor a model: expected a JSON scene (.json) or a "
-                         "model (.obj, .ply, .obj.gz, .ply.gz)");
-    SceneData scene = is_model_file(path) ? load_model_scene(path) : load_scene(path);
+    SceneData scene = open_scene(path);
     for (const std::string& w : scene.warnings)
         std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
     return scene;
-}
-
-void apply_resolution(Camera& cam, int width, int height) {
-    if (width > 0 && height > 0) {
-        cam.width = width;
-        cam.height = height;
-    } else if (width > 0) {
-        cam.height = std::max(1, int(std::lround(double(width) * cam.height / cam.width)));
-        cam.width = width;
-    } else if (height > 0) {
-        cam.width = std::max(1, int(std::lround(double(height) * cam.width / cam.height)));
-        cam.height = height;
-    }
-    // one side given keeps the scene's aspect ratio, which may take the other past the limits
-    if (cam.width > max_film_side || cam.height > max_film_side ||
-        int64_t(cam.width) * cam.height > max_film_pixels)
-        throw InputError("--width/--height: an image of " + std::to_string(cam.width) + "x" +
-                         std::to_string(cam.height) + " pixels is too large (at most " +
-                         std::to_string(max_film_side) + " a side and 2^28 pixels)");
 }
 
 }  // namespace raylane

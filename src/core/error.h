@@ -1,15 +1,13 @@
-// core: the one error type for bad input. The message is already the single line the user sees:
-// "file:line: reason" (or "file: byte N: reason", "file: $.json.path: reason").
+// core: the one error type for bad input, the public raylane::Error (raylane/error.h). The
+// message is already the single line the user sees: "file:line: reason" (or "file: byte N:
+// reason", "file: $.json.path: reason").
 #pragma once
 
-#include <stdexcept>
-#include <string>
+#include "raylane/error.h"
 
 namespace raylane {
 
-/// Thrown by every loader on malformed input; `raylane` prints what() and exits with code 2.
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+/// What every loader throws on malformed input; `raylane` prints what() and exits with code 2.
+using InputError = Error;
 
 }  // namespace raylane

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "raylane/mesh.h"  // Coherence
 #include "scene/scene.h"
 
 namespace raylane {
@@ -38,10 +39,10 @@ struct HitBuffers {
 
 enum class BatchPath : uint8_t { scalar, packet };
 
-/// How the packet path groups rays. `automatic` looks at each block of max_block_rays
-/// consecutive rays: a block whose directions all lie within about 25 degrees of its first
-/// ray's (rays_coherent) goes through the block traversal, the others through streams.
-enum class Coherence : uint8_t { automatic, coherent, incoherent };
+/// How the packet path groups rays is the public raylane::Coherence (raylane/mesh.h):
+/// `automatic` looks at each block of max_block_rays consecutive rays: a block whose directions
+/// all lie within about 25 degrees of its first ray's (rays_coherent) goes through the block
+/// traversal, the others through streams.
 
 struct BatchParams {
     BatchPath path = BatchPath::packet;
