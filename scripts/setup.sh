@@ -12,8 +12,9 @@ packages+=(qemu-user binutils)
 packages+=(pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
 # `pip install .` offline in a virtual environment (docs/building.md, "pip install")
 packages+=(python3-venv python3-setuptools python3-wheel python3-pip)
-# the man page check of tests/python/test_packaging.py (groff)
-packages+=(groff-base)
+# the man page check of tests/python/test_packaging.py (groff); the Debian package (cpack -G DEB
+# computes its dependencies with dpkg-shlibdeps) and its test (pkg-config for the examples)
+packages+=(groff-base dpkg-dev pkg-config)
 # Embree is only for the baseline benchmark; the renderer never links it.
 [ "${RAYLANE_NO_EMBREE:-0}" = 1 ] || packages+=(libembree-dev)
 missing=()
