@@ -262,8 +262,9 @@ bool block_may_hit_unbounded(const SceneData& scene, const BlockBounds& b, const
            block_may_hit_plane(b, object, scene.planes[object.shape]);
 }
 
-/// Ranged traversal of one BVH by a block: leaf(node, first, last) is called with the packets
-/// [first, last] that touch the leaf; test(p, node) is packet p's slab mask for the node.
+/// Ranged traversal of one BVH by a block of `count` packets. Every range of packets in this file
+/// is half-open, [first, end). leaf(node, first, end) is called with the packets [first, end)
+/// that may touch the leaf; test(p, node) is packet p's slab mask for the node.
 template <int W, class Test, class Leaf>
 void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&& test,
                     Leaf&& leaf) {
@@ -288,11 +289,11 @@ void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&&
             }
         }
         if (touched) {
-            int last = e.end - 1;  // leaves test each packet of [first, last] anyway
             if (node.is_leaf()) {
-                leaf(node, first, last);
+                leaf(node, first, int{e.end});  // leaves test each packet of [first, end) anyway
             } else {
                 // last packet that touches the node: the children need not look past it
+                int last = e.end - 1;
                 while (last > first && !any(test(last, node))) --last;
                 const uint16_t first16 = static_cast<uint16_t>(first);
                 const uint16_t end16 = static_cast<uint16_t>(last + 1);
@@ -315,7 +316,7 @@ void traverse_block(const Bvh& bvh, const BlockBounds& bounds, int count, Test&&
 /// block's bounds are tested against every slot at once (block_may_hit_slots); a slot they may
 /// hit goes on with the packets from the first to the last whose own test hits it, nearest
 /// slot (by the bounds' entry distance) first. test(p, node, s) is packet p's slab mask for
-/// slot s of `node`; leaf(node, s, first, last) tests packets [first, last] against the leaf
+/// slot s of `node`; leaf(node, s, first, end) tests packets [first, end) against the leaf
 /// in slot s and returns true when no lane of the block is left open (any hit: the block
 /// stops). A popped slot whose entry bound is beyond the block's t_max (lowered by the leaves)
 /// is skipped.
@@ -325,35 +326,36 @@ void traverse_block_wide(const WideBvh& wide, const BlockBounds& bounds, int cou
     struct Entry {
         uint32_t node;
         uint16_t slot;
-        uint16_t first, last;  // packets [first, last]
+        uint16_t first, end;  // packets [first, end)
         float t_enter;
     };
     Entry stack[wide_stack_size + 1];
     int top = 0;
     uint32_t node_index = 0;
-    uint16_t first = 0, last = static_cast<uint16_t>(count - 1);
+    uint16_t first = 0, end = static_cast<uint16_t>(count);
     for (;;) {
-        // an interior node: its slots that some packet of [first, last] enters, nearest first
+        // an interior node: its slots that some packet of [first, end) enters, nearest first
         const WideNode& node = wide.nodes[node_index];
         float t_enter[wide_arity];
         uint32_t slots = block_may_hit_slots(bounds, node, t_enter);
         Entry entered[wide_arity];
-        int n = 0;
+        int entered_count = 0;
         for (; slots != 0; slots &= slots - 1) {
             const int s = std::countr_zero(slots);
-            int f = first;
-            while (f <= last && none(test(f, node, s))) ++f;
-            if (f > last) continue;
-            int l = last;
-            while (l > f && none(test(l, node, s))) --l;
-            const Entry e{node_index, static_cast<uint16_t>(s), static_cast<uint16_t>(f),
-                          static_cast<uint16_t>(l), t_enter[s]};
-            int at = n++;
+            // the first and the last packet whose own test hits the slot
+            int slot_first = first;
+            while (slot_first < end && none(test(slot_first, node, s))) ++slot_first;
+            if (slot_first == end) continue;
+            int slot_last = end - 1;
+            while (slot_last > slot_first && none(test(slot_last, node, s))) --slot_last;
+            const Entry e{node_index, static_cast<uint16_t>(s), static_cast<uint16_t>(slot_first),
+                          static_cast<uint16_t>(slot_last + 1), t_enter[s]};
+            int at = entered_count++;
             for (; at > 0 && entered[at - 1].t_enter > e.t_enter; --at)
                 entered[at] = entered[at - 1];
             entered[at] = e;
         }
-        for (int i = n - 1; i >= 0; --i) stack[top++] = entered[i];
+        for (int i = entered_count - 1; i >= 0; --i) stack[top++] = entered[i];
         // the next interior slot; the leaves on the way are tested
         for (;;) {
             if (top == 0) return;
@@ -361,11 +363,11 @@ void traverse_block_wide(const WideBvh& wide, const BlockBounds& bounds, int cou
             if (beyond(e.t_enter, bounds.t_max)) continue;
             const WideNode& parent = wide.nodes[e.node];
             if (parent.is_leaf(e.slot)) {
-                if (leaf(parent, e.slot, e.first, e.last)) return;
+                if (leaf(parent, e.slot, e.first, e.end)) return;
                 continue;
             }
             node_index = parent.child[e.slot];
-            first = e.first, last = e.last;
+            first = e.first, end = e.end;
             __builtin_prefetch(&wide.nodes[node_index]);
             break;
         }
@@ -421,12 +423,13 @@ void intersect_closest_block(const SceneData& scene, const Accel& accel, const R
     WatertightPacket<W> wr[max_block_rays / W];
     bool wr_ready[max_block_rays / W] = {};
     bool found = false;
-    traverse_block<W>(accel.top, bounds, count, test, [&](const BvhNode& top_leaf, int f, int l) {
+    // the objects of a top-level leaf against the packets [first, end) that may touch it
+    auto intersect_top_leaf = [&](const BvhNode& top_leaf, int first, int end) {
         for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
             const uint32_t object_index = accel.top.prim_ids[k];
             const Object& object = scene.objects[object_index];
             if (object.kind != ShapeKind::mesh) {
-                for (int p = f; p <= l; ++p) {
+                for (int p = first; p < end; ++p) {
                     const vmask<W> m = test(p, top_leaf);
                     if (any(m)) {
                         intersect_object_closest_from(scene, accel, object_index, rays[p], m,
@@ -436,18 +439,22 @@ void intersect_closest_block(const SceneData& scene, const Accel& accel, const R
                 }
                 continue;
             }
-            // a mesh: the same ranged traversal over its own BVH, for packets [f, l]
+            // a mesh: the same ranged traversal over its own BVH, for packets [first, end),
+            // which it numbers from 0
             const MeshAccel& mesh = accel.meshes[object.shape];
             if (mesh.wide.nodes.empty()) continue;
-            for (int p = f; p <= l; ++p) {
+            for (int p = first; p < end; ++p) {
                 if (!wr_ready[p]) fill_watertight_ray(wr[p], rays[p], active[p]);
                 wr_ready[p] = true;
             }
             traverse_block_wide<W>(
-                mesh.wide, bounds, l + 1 - f,
-                [&](int q, const WideNode& node, int s) { return test_slot(f + q, node, s); },
-                [&](const WideNode& node, int s, int from, int to) {  // packets f + [from, to]
-                    for (int p = f + from; p <= f + to; ++p) {
+                mesh.wide, bounds, end - first,
+                [&](int mesh_p, const WideNode& node, int s) {
+                    return test_slot(first + mesh_p, node, s);
+                },
+                [&](const WideNode& node, int s, int mesh_first, int mesh_end) {
+                    // packets first + [mesh_first, mesh_end)
+                    for (int p = first + mesh_first; p < first + mesh_end; ++p) {
                         const vmask<W> m = test_slot(p, node, s);
                         if (none(m)) continue;
                         const LeafTris tris = leaf_tris(mesh, {node.child[s], node.count[s]});
@@ -460,7 +467,8 @@ void intersect_closest_block(const SceneData& scene, const Accel& accel, const R
                     return false;
                 });
         }
-    });
+    };
+    traverse_block<W>(accel.top, bounds, count, test, intersect_top_leaf);
 }
 
 template <int W>
@@ -501,12 +509,13 @@ void intersect_any_block(const SceneData& scene, const Accel& accel, const RayPa
     };
     WatertightPacket<W> wr[max_block_rays / W];
     bool wr_ready[max_block_rays / W] = {};
-    traverse_block<W>(accel.top, bounds, count, test, [&](const BvhNode& top_leaf, int f, int l) {
+    // the objects of a top-level leaf against the packets [first, end) that may touch it
+    auto intersect_top_leaf = [&](const BvhNode& top_leaf, int first, int end) {
         for (uint32_t k = top_leaf.index; k < top_leaf.index + top_leaf.count; ++k) {
             const uint32_t object_index = accel.top.prim_ids[k];
             const Object& object = scene.objects[object_index];
             if (object.kind != ShapeKind::mesh) {
-                for (int p = f; p <= l; ++p) {
+                for (int p = first; p < end; ++p) {
                     const vmask<W> m = test(p, top_leaf);
                     if (none(m)) continue;
                     occluded[p] = mask_or(occluded[p], intersect_object_any_from(
@@ -517,16 +526,19 @@ void intersect_any_block(const SceneData& scene, const Accel& accel, const RayPa
             }
             const MeshAccel& mesh = accel.meshes[object.shape];
             if (mesh.wide.nodes.empty()) continue;
-            for (int p = f; p <= l; ++p) {
+            for (int p = first; p < end; ++p) {
                 if (!wr_ready[p]) fill_watertight_ray(wr[p], rays[p], active[p]);
                 wr_ready[p] = true;
             }
             traverse_block_wide<W>(
-                mesh.wide, bounds, l + 1 - f,
-                [&](int q, const WideNode& node, int s) { return test_slot(f + q, node, s); },
-                [&](const WideNode& node, int s, int from, int to) {  // packets f + [from, to]
+                mesh.wide, bounds, end - first,
+                [&](int mesh_p, const WideNode& node, int s) {
+                    return test_slot(first + mesh_p, node, s);
+                },
+                [&](const WideNode& node, int s, int mesh_first, int mesh_end) {
+                    // packets first + [mesh_first, mesh_end)
                     bool done = true;
-                    for (int p = f + from; p <= f + to; ++p) {
+                    for (int p = first + mesh_first; p < first + mesh_end; ++p) {
                         // the open lanes that touch the leaf
                         const vmask<W> m = test_slot(p, node, s);
                         if (none(m)) continue;
@@ -534,11 +546,12 @@ void intersect_any_block(const SceneData& scene, const Accel& accel, const RayPa
                         occluded[p] = mask_or(occluded[p], leaf_any(tris, wr[p], rays[p], m));
                         open[p] = mask_andnot(active[p], occluded[p]);
                     }
-                    for (int p = f; p <= l && done; ++p) done = none(open[p]);
+                    for (int p = first; p < end && done; ++p) done = none(open[p]);
                     return done;
                 });
         }
-    });
+    };
+    traverse_block<W>(accel.top, bounds, count, test, intersect_top_leaf);
 }
 
 // Instantiations: the widths of this instruction set (RAYLANE_FOR_EACH_WIDTH, simd/simd.h).
