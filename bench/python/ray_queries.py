@@ -6,9 +6,9 @@ pinhole camera in 16x16 tiles of 4x4 squares (coherent), random rays from a sphe
 mesh towards points inside its bounds (incoherent), and shadow-like occlusion queries from the
 primary hits towards a directional light. Each set is saved as a ray file and raced by
 `bench_intersect --rays FILE` (Raylane's packet path through the same batch function, and
-Embree 3's APIs); the Python calls (Mesh.intersect, Mesh.occluded) are timed here, a median of
-5 after a warm-up, on all threads, in rounds that alternate with bench_intersect's (3 by
-default). Then the mesh's BVH build from NumPy arrays (raylane.Mesh) against the C++ build from
+Embree 3's APIs); the Python calls (Mesh.intersect, Mesh.occluded) are timed here, returning
+new arrays and writing into out= arrays, a median of 5 after a warm-up, on all threads, in rounds
+that alternate with bench_intersect's (3 by default). Then the mesh's BVH build from NumPy arrays (raylane.Mesh) against the C++ build from
 the loaded mesh (BM_RayFile_Build).
 
     PYTHONPATH=build/release/python /usr/bin/python3 bench/python/ray_queries.py \\
@@ -147,9 +147,9 @@ def main():
           f"over {args.rounds} rounds of medians of 5; Raylane {raylane.__version__}, packet "
           f"{isa['in_use']}, width {isa['packet_width']}; load average "
           f"{os.getloadavg()[0]:.1f} at the start\n")
-    print("| rays | count | Python | C++ packet (best of Packet, Block, Stream) | Embree's best "
-          "| Python / C++ | Python / Embree |")
-    print("|---|---:|---:|---:|---:|---:|---:|")
+    print("| rays | count | Python | Python, out= | C++ packet (best of Packet, Block, Stream) "
+          "| Embree's best | Python / C++ | Python out= / C++ | Python out= / Embree |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     build_cpp = []
     details = []
     with tempfile.TemporaryDirectory() as folder:
@@ -159,13 +159,23 @@ def main():
             raylane.save_rays(rays_file, o, d)
             # rounds of the Python call and bench_intersect in turn, so that a busy spell of a
             # shared machine falls on both; the medians over the rounds are reported
-            python_rates, cpp_rates, embree_rates, all_rates = [], [], [], []
+            python_rates, out_rates, cpp_rates, embree_rates, all_rates = [], [], [], [], []
+            # out=: the result arrays made once and written by every call (no allocation)
+            if query == "Closest":
+                out = {"t": np.empty(n, np.float32), "prim": np.empty(n, np.int32),
+                       "u": np.empty(n, np.float32), "v": np.empty(n, np.float32),
+                       "normal": np.empty((n, 3), np.float32)}
+            else:
+                out = np.empty(n, bool)
             for _ in range(args.rounds):
                 if query == "Closest":
                     seconds = median_seconds(lambda: mesh.intersect(o, d))
+                    seconds_out = median_seconds(lambda: mesh.intersect(o, d, out=out))
                 else:
                     seconds = median_seconds(lambda: mesh.occluded(o, d))
+                    seconds_out = median_seconds(lambda: mesh.occluded(o, d, out=out))
                 python_rates.append(n / seconds * 1e-6)
+                out_rates.append(n / seconds_out * 1e-6)
                 rates, build_ms = bench_intersect(args.bench, rays_file, args.mesh, threads, query,
                                                   isa["in_use"], args.min_time)
                 if build_ms is not None:
@@ -175,11 +185,12 @@ def main():
                                         default=0.0))
                 all_rates.append(rates)
             python_rate = statistics.median(python_rates)
+            out_rate = statistics.median(out_rates)
             cpp = statistics.median(cpp_rates)
             embree = statistics.median(embree_rates)
-            print(f"| {label} | {n} | {python_rate:.2f} | {cpp:.2f} | {embree:.2f} | "
-                  f"{python_rate / cpp:.2f}x | "
-                  + (f"{python_rate / embree:.2f}x |" if embree else "— |"), flush=True)
+            print(f"| {label} | {n} | {python_rate:.2f} | {out_rate:.2f} | {cpp:.2f} | "
+                  f"{embree:.2f} | {python_rate / cpp:.2f}x | {out_rate / cpp:.2f}x | "
+                  + (f"{out_rate / embree:.2f}x |" if embree else "— |"), flush=True)
             details.append((label, {k: statistics.median(r[k] for r in all_rates)
                                     for k in all_rates[0]}))
     build_cpp = statistics.median(build_cpp)

@@ -181,3 +181,53 @@ def test_save_rays_writes_an_n_by_6_float32_file(tmp_path):
     rays = np.load(path)
     assert rays.dtype == np.float32 and rays.shape == (4, 6)
     assert np.array_equal(rays[:, :3], origins) and np.array_equal(rays[:, 3:], directions)
+
+
+def test_out_arrays_are_written_returned_and_give_the_same_answers():
+    mesh = raylane.load_mesh(model_or_skip("bunny.ply"))
+    origins, directions = random_rays(mesh, 20_000, seed=3)
+    n = len(origins)
+    expected = mesh.intersect(origins, directions)
+    out = {"t": np.full(n, -7, np.float32), "prim": np.full(n, -7, np.int32),
+           "u": np.empty(n, np.float32), "v": np.empty(n, np.float32),
+           "normal": np.empty((n, 3), np.float32)}
+    arrays = dict(out)
+    for _ in range(2):  # a second call into the same arrays gives the same answers
+        got = mesh.intersect(origins, directions, out=out)
+        assert got is out
+        assert all(got[k] is arrays[k] for k in arrays), "the caller's arrays, not new ones"
+        assert_same_hits(got, expected)
+    # only the arrays asked for are written
+    t_only = {"t": np.empty(n, np.float32)}
+    assert mesh.intersect(origins, directions, out=t_only) is t_only and list(t_only) == ["t"]
+    assert np.array_equal(t_only["t"].view(np.uint32), expected["t"].view(np.uint32))
+    occluded = np.zeros(n, bool)
+    assert mesh.occluded(origins, directions, out=occluded) is occluded
+    assert np.array_equal(occluded, mesh.occluded(origins, directions))
+    assert np.array_equal(occluded, expected["prim"] >= 0)
+
+
+@pytest.mark.parametrize("out, message", [
+    ({"t": np.empty(3, np.float64)}, r"out\['t'\]: float64 \(3,\), expected float32 \(3,\)"),
+    ({"t": np.empty(4, np.float32)}, r"out\['t'\]: float32 \(4,\), expected float32 \(3,\)"),
+    ({"normal": np.empty((3, 3), np.float32).T}, r"out\['normal'\]: not C-contiguous"),
+    ({"prim": np.empty(3, np.int64)}, r"out\['prim'\]: int64 \(3,\), expected int32 \(3,\)"),
+    ({"depth": np.empty(3, np.float32)}, r"out: unknown key 'depth'"),
+    ([np.empty(3, np.float32)], r"out: expected a dict"),
+])
+def test_bad_out_arrays_raise_one_clear_value_error(out, message):
+    origins = np.zeros((3, 3), np.float32)
+    directions = np.ones((3, 3), np.float32)
+    with pytest.raises(ValueError, match=message):
+        quad().intersect(origins, directions, out=out)
+
+
+def test_a_read_only_or_wrong_occluded_out_array_is_refused():
+    origins = np.zeros((3, 3), np.float32)
+    directions = np.ones((3, 3), np.float32)
+    read_only = np.zeros(3, bool)
+    read_only.flags.writeable = False
+    with pytest.raises(ValueError, match=r"out: read-only"):
+        quad().occluded(origins, directions, out=read_only)
+    with pytest.raises(ValueError, match=r"out: uint8 \(3,\), expected bool \(3,\)"):
+        quad().occluded(origins, directions, out=np.zeros(3, np.uint8))
