@@ -157,7 +157,7 @@ void sample_values(const SceneData& scene, const Accel& accel, const RenderParam
         shade_camera_block<W, F>(scene, accel, shade, s, params.seed, rays, tp.active, tp.slot,
                                  tp.pixel, tp.count, value, counts);
     } else {
-        assert(false);  // colour with secondary rays is always batched (wavefront_values)
+        assert(false);  // colour with secondary rays always goes by wavefronts (wavefront_values)
     }
 }
 
@@ -257,14 +257,14 @@ RenderResult render_packet_features(const SceneData& scene, const Accel& accel,
         const TilePackets<W> tp = tile_packets<W, F>(tile, cam.width, lanes, b);
         TileSums<W> sums;
         ShadeCounts counts;
-        // colour with secondary rays: batches of samples, one wavefront each; else one sample at
-        // a time
-        const bool batched = has_secondary_rays<F> && params.aov == Aov::color;
-        const int batch = batched ? wavefront_samples : 1;
-        for (int s0 = 0; s0 < spp; s0 += batch) {
-            if (batched) {
+        // colour with secondary rays: wavefronts of several samples each; else one sample at a
+        // time
+        const bool by_wavefronts = has_secondary_rays<F> && params.aov == Aov::color;
+        const int step = by_wavefronts ? wavefront_samples : 1;
+        for (int s0 = 0; s0 < spp; s0 += step) {
+            if (by_wavefronts) {
                 wavefront_values<W, F>(scene, accel, params, shade, frame, spp, tp, s0,
-                                       std::min(batch, spp - s0), b, sums, counts);
+                                       std::min(step, spp - s0), b, sums, counts);
             } else {
                 Vec3<W> value[TilePackets<W>::max_packets];
                 sample_values<W, F>(scene, accel, params, shade, frame, spp, tp, s0, value, counts);

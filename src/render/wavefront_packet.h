@@ -26,14 +26,14 @@ namespace raylane::RAYLANE_ISA_NS {
 /// Samples of a tile's pixels traced together in one wavefront: its camera rays go in camera
 /// packet by camera packet (a packet's samples one after the other), so the secondary rays of a
 /// packet come from a few neighbouring pixels rather than from sixteen, and stay together longer.
-constexpr int max_batch_samples = 16;
+constexpr int max_wavefront_samples = 16;
 
 /// Samples per wavefront times the rays a camera ray may spawn (an estimate, below): kept under
 /// this, a wavefront's queues stay about as large as one sample's of a scene with a few shadow
 /// rays per hit, which fit the cache.
 constexpr int64_t wavefront_ray_budget = 96;
 
-/// The samples per wavefront: up to max_batch_samples, fewer when hits spawn many rays (shadow
+/// The samples per wavefront: up to max_wavefront_samples, fewer when hits spawn many rays (shadow
 /// rays to every light sample, times the glossy rays and their own shadow rays). It depends on
 /// the scene and the sample-count options only, never on threads or timing: the summation order
 /// of a pixel's contributions, and so the image's last bits, depend on it.
@@ -45,12 +45,13 @@ inline int samples_per_wavefront(const SceneData& scene, const ShadeParams& para
         if (m.model == SpecularModel::glossy_phong)
             glossy = std::max<int64_t>(glossy, glossy_sample_count(m, params));
     const int64_t rays = std::max<int64_t>(shadow, 1) * (1 + glossy);
-    return static_cast<int>(std::clamp<int64_t>(wavefront_ray_budget / rays, 1, max_batch_samples));
+    return static_cast<int>(
+        std::clamp<int64_t>(wavefront_ray_budget / rays, 1, max_wavefront_samples));
 }
 
-/// A wavefront's slots (shade_io_packet.h, SlotMap): sample j of the batch at tile slot i is slot
-/// j * max_block_rays + i.
-constexpr int max_slots = max_batch_samples * max_block_rays;
+/// A wavefront's slots (shade_io_packet.h, SlotMap): sample j of the wavefront at tile slot i is
+/// slot j * max_block_rays + i.
+constexpr int max_slots = max_wavefront_samples * max_block_rays;
 
 /// A thread's buffers for shading tiles; grown on the first tiles, then reused.
 struct TileBuffers {
@@ -269,8 +270,8 @@ void shade_tile_samples(const SceneData& scene, const Accel& accel, const ShadeP
             const int end = b.material_count[m];
             for (int i = begin; i < end; i += W) {
                 const int next = b.next.size, next_inside = b.next_inside.size;
-                shade_batch<W, F>(scene, scene.materials[m], params, seed, slots, q, b.hits,
-                                  &b.order[size_t(i)], std::min(W, end - i), target);
+                shade_packet<W, F>(scene, scene.materials[m], params, seed, slots, q, b.hits,
+                                   &b.order[size_t(i)], std::min(W, end - i), target);
                 b.next.sort_by_parent(next), b.next_inside.sort_by_parent(next_inside);
             }
             begin = end;

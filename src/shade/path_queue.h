@@ -67,7 +67,7 @@ struct PathQueue {
         size += other.size;
     }
     /// Puts rays `from`..size in the order of their parents (stable: a parent's children in the
-    /// order they were queued). A batch of W hits queues its rays kind by kind, each kind lane by
+    /// order they were queued). A packet of W hits queues its rays kind by kind, each kind lane by
     /// lane; sorted, the queue's order no longer depends on W, nor does the order in which the
     /// paths of one slot add up (render/wavefront_packet.h).
     void sort_by_parent(int from) {

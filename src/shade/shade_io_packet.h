@@ -1,6 +1,6 @@
 // shade: what the packet path's shading kernels (shade_packet.h) read and write in place of the
 // scalar path's recursion: closest hits in arrays, queue entries gathered into registers
-// (ShadeInput), and the two targets a batch writes to: the wavefront's queues and slots
+// (ShadeInput), and the two targets shade_hits writes to: the wavefront's queues and slots
 // (ShadeTarget), or a camera packet's registers and its shadow rays in place (PacketTarget).
 // Also the kernels' lane-wise helpers: gathers, accumulation, child path keys.
 #pragma once
@@ -28,9 +28,9 @@ struct HitArrays {
     }
 };
 
-/// What a batch writes to: the radiance of each path of the pass (index = its entry in the pass's
-/// queue; render/wavefront_packet.h adds them to the wavefront's slots after the pass), the shadow
-/// queues (one per light) and the next pass's queues.
+/// What shade_hits writes to: the radiance of each path of the pass (index = its entry in the
+/// pass's queue; render/wavefront_packet.h adds them to the wavefront's slots after the pass), the
+/// shadow queues (one per light) and the next pass's queues.
 struct ShadeTarget {
     float* path_r = nullptr;
     float* path_g = nullptr;
@@ -53,7 +53,7 @@ struct ShadowBlock {
     vmask<W> lanes[max_block_rays / W];
 };
 
-/// What a batch writes to in the one-pass kernels (no secondary rays): the radiance of camera
+/// What shade_hits writes to in the one-pass kernels (no secondary rays): the radiance of camera
 /// packet `packet` in registers and its shadow rays in place, one ShadowBlock per light sample
 /// (light j's samples from shadow_first[j] on).
 template <int W>
@@ -114,7 +114,7 @@ inline void add_shadow_rays(const PacketTarget<W>& out, size_t j, int i, const V
     ShadowBlock<W>& b = out.shadows[out.shadow_first[j] + i];
     const int p = out.packet;
     const RayPacket<W> r{origin, dir, vfloat<W>(0.0f), distance};
-    if (none(b.lanes[p])) {  // the packet's first batch for this sample: every lane written
+    if (none(b.lanes[p])) {  // no lanes yet for this light sample: every lane written
         b.rays[p] = r;
         b.contribution[p] = contribution;
         b.lanes[p] = lit;
@@ -149,13 +149,13 @@ struct ShadeInput {
     vmask<W> local_only;
 };
 
-/// A wavefront holds several samples of a tile's pixels: sample j of its batch at tile slot i (a
-/// pixel of the tile) is wavefront slot j * max_block_rays + i.
+/// A wavefront holds several samples of a tile's pixels: its sample j at tile slot i (a pixel of
+/// the tile) is wavefront slot j * max_block_rays + i.
 inline constexpr int tile_slot_bits = 8;
 static_assert(max_block_rays == 1 << tile_slot_bits);
 
 /// What a wavefront's slots stand for: the image pixel of each tile slot, and the sample index of
-/// the batch's first sample (slot s is sample first_sample + s / max_block_rays).
+/// the wavefront's first sample (slot s is sample first_sample + s / max_block_rays).
 struct SlotMap {
     const int32_t* pixel = nullptr;
     int32_t first_sample = 0;

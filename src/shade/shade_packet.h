@@ -353,11 +353,12 @@ void shade_hits(const SceneData& scene, const Material& m, const ShadeParams& pa
     local_term<W, F>(scene, m, p, in, local_weight, params, seed, out, active);
 }
 
-/// Shades k <= W hits of material `m`: queue entries idx[0..k) of `q` with hits `h`.
+/// Shades a packet of k <= W hits of material `m`, gathered from the queue: entries idx[0..k) of
+/// `q` with hits `h`.
 template <int W, uint32_t F>
-void shade_batch(const SceneData& scene, const Material& m, const ShadeParams& params,
-                 uint32_t seed, const SlotMap& slots, const PathQueue& q, const HitArrays& h,
-                 const int32_t* idx, int k, const ShadeTarget& out) {
+void shade_packet(const SceneData& scene, const Material& m, const ShadeParams& params,
+                  uint32_t seed, const SlotMap& slots, const PathQueue& q, const HitArrays& h,
+                  const int32_t* idx, int k, const ShadeTarget& out) {
     const vmask<W> active = mask_from_bits<W>(k >= 32 ? ~0u : (1u << k) - 1u);
     shade_hits<W, F>(scene, m, params, seed, gather_shade_input<W>(q, h, slots, idx, active),
                      active, out);

@@ -1,5 +1,5 @@
 // shade: the recursive reference shading of one path. Mirrored by shade_packet.h, which
-// computes the same terms for batches of hits grouped by material.
+// computes the same terms for packets of hits grouped by material.
 #include "shade/shade_scalar.h"
 
 #include <cmath>

@@ -1,7 +1,8 @@
 // shade: the radiance along one ray of a path, the reference path: local shading (diffuse and
 // specular lobes, point, directional and area lights with shadow rays, glossy rays), mirror
 // reflection, Fresnel refraction with Beer's law, textures, normal and environment maps.
-// Recursive and plain. Mirrored by shade_packet.h (the same terms, batched by material).
+// Recursive and plain. Mirrored by shade_packet.h (the same terms, for packets of hits grouped by
+// material).
 #pragma once
 
 #include <cstdint>

@@ -40,7 +40,7 @@ SceneData scene_named(const std::string& name) {
 /// 50 x 29 pixels: the camera packets (4x4 at W = 16, 4x2 at 8, 2x2 at 4) are cut by the image's
 /// right and bottom edges, in the one-pass kernel (the built-in scene) and in the wavefront
 /// (the glass sphere, whose secondary rays fill queues from those packets). The wavefront takes
-/// up to 16 samples at once: 19 samples make a full batch and a partial one (the glass sphere,
+/// up to 16 samples at once: 19 samples make a full wavefront and a partial one (the glass sphere,
 /// the glass bunny); the glossy sphere's hits spawn so many rays that it takes one at a time.
 TYPED_TEST(RenderPacket, MatchesScalarWithJitteredSamples) {
     constexpr int W = TypeParam::value;
@@ -77,7 +77,7 @@ TYPED_TEST(RenderPacket, MatchesScalarWithJitteredSamples) {
 }
 
 /// In the one-pass kernel (the built-in scene) and in a kernel with secondary rays (the glass
-/// sphere), whose AOVs take a sample at a time, not the wavefront's batches.
+/// sphere), whose AOVs take a sample at a time, not several in a wavefront.
 TYPED_TEST(RenderPacket, AovsMatchScalar) {
     constexpr int W = TypeParam::value;
     for (const char* name : {"builtin", "fig05_refractive_sphere"}) {
@@ -106,9 +106,9 @@ TYPED_TEST(RenderPacket, AovsMatchScalar) {
     }
 }
 
-/// Bit for bit, in the one-pass kernel (the built-in scene) and in the wavefront, whose batches
-/// of samples fix the order of each pixel's sums (the glass bunny and its area light: 19 samples
-/// make a batch of 16 and one of 3).
+/// Bit for bit, in the one-pass kernel (the built-in scene) and in the wavefronts, whose samples
+/// fix the order of each pixel's sums (the glass bunny and its area light: 19 samples make a
+/// wavefront of 16 and one of 3).
 TEST(RenderPacket, SameImageForOneAndTwoThreads) {
     for (const char* name : {"builtin", "fig10_glass_bunny"}) {
         const SceneData scene = small_scene(scene_named(name), 80);

@@ -139,7 +139,7 @@ TYPED_TEST(SurfaceAtPacket, SameSurfaceAsTheScalarPath) {
         if (W > 1) {
             EXPECT_GT(mixed, 0) << name;
         }
-        // grouped by object, as the shading batches are (gathers, the plane's packet form)
+        // grouped by object, as the shading's packets are (gathers, the plane's packet form)
         std::stable_sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) {
             return a.hit.object < b.hit.object;
         });
