@@ -39,8 +39,11 @@ struct Printed {
 Printed run_raylane(const std::string& launcher, const SceneData& scene, int threads) {
     const std::string out =
         (std::filesystem::temp_directory_path() / "raylane_bench_distribute.png").string();
-    const std::string cmd = launcher + RAYLANE_BINARY + " render -q " + RAYLANE_SOURCE_DIR "/" +
-                            scene.args + " --threads " + std::to_string(threads) + " -o " + out;
+    // not -q, which leaves out the lines read below; stderr goes into the pipe as well, so that it
+    // is not a terminal and no progress line is drawn
+    const std::string cmd = launcher + RAYLANE_BINARY + " render " + RAYLANE_SOURCE_DIR "/" +
+                            scene.args + " --threads " + std::to_string(threads) + " -o " + out +
+                            " 2>&1";
     Printed p;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return p;
