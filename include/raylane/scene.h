@@ -126,9 +126,10 @@ struct SceneStats {
 class Scene {
   public:
     /// Loads a JSON scene (docs/scene-format.md) or a model file (.obj, .ply, optionally .gz:
-    /// the model's own scene, a camera framing it and a light) and builds its BVHs. Models a
-    /// scene names are looked up beside it, then on RAYLANE_MODEL_PATH. An empty path is the
-    /// built-in scene. Throws Error with the file, line and reason when the file is not one.
+    /// the model's own scene, a camera framing it and a light) and builds its BVHs. A model
+    /// file's name that is not a file here ("bunny.ply") is looked up on RAYLANE_MODEL_PATH, as
+    /// are the models a scene names (beside the scene first). An empty path is the built-in
+    /// scene. Throws Error with the file, line and reason when the file is not one.
     static Scene load(const std::string& path);
 
     /// Renders the scene. Throws Error when a setting is out of range.

@@ -3,7 +3,9 @@
 #include "raylane/scene.h"
 
 #include <cstring>
+#include <filesystem>
 #include <mutex>
+#include <system_error>
 #include <utility>
 
 #include "accel/bvh.h"
@@ -13,6 +15,8 @@
 #include "core/isa.h"
 #include "core/threads.h"
 #include "image/film.h"
+#include "io/model_path.h"
+#include "io/model_scene.h"
 #include "io/open_scene.h"
 #include "render/primary_ids.h"
 #include "render/render_packet.h"
@@ -89,13 +93,23 @@ TreeStats tree_stats(const BvhStats& b) {
 
 }  // namespace
 
+/// A model file's name that is not a file here (e.g. "bunny.ply") is looked up on
+/// RAYLANE_MODEL_PATH, as Mesh::load does; any other path is opened as it is.
+std::string model_or_path(const std::string& path) {
+    std::error_code ec;
+    if (path.empty() || !is_model_file(path) || std::filesystem::exists(path, ec) ||
+        std::filesystem::path(path).is_absolute())
+        return path;
+    return find_model(path, ".");
+}
+
 Scene::Scene(std::shared_ptr<State> state) : state_(std::move(state)) {}
 
 Scene Scene::load(const std::string& path) {
     return guarded([&] {
         auto s = std::make_shared<State>();
         const double t_load = now_seconds();
-        s->scene = open_scene(path);
+        s->scene = open_scene(model_or_path(path));
         s->load_ms = elapsed_ms(t_load);
         const double t_build = now_seconds();
         s->accel = build_accel(s->scene, BuildParams{});
