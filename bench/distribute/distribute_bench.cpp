@@ -20,12 +20,12 @@
 namespace raylane {
 namespace {
 
-struct SceneData {
+struct BenchScene {
     const char* name;
     const char* args;  ///< the scene and its size
 };
 
-const SceneData scenes[] = {
+const BenchScene scenes[] = {
     {"glass_bunny", "scenes/fig10_glass_bunny.json --width 320 --spp 16"},
     {"dragon", "scenes/dragon.json --spp 4"},
 };
@@ -36,7 +36,7 @@ struct Printed {
     bool ok = false;
 };
 
-Printed run_raylane(const std::string& launcher, const SceneData& scene, int threads) {
+Printed run_raylane(const std::string& launcher, const BenchScene& scene, int threads) {
     const std::string out =
         (std::filesystem::temp_directory_path() / "raylane_bench_distribute.png").string();
     // not -q, which leaves out the lines read below; stderr goes into the pipe as well, so that it
@@ -73,7 +73,7 @@ std::string mpirun(int ranks) {
 }
 
 /// One process, all the threads.
-void BM_OneProcess(benchmark::State& state, const SceneData* scene) {
+void BM_OneProcess(benchmark::State& state, const BenchScene* scene) {
     const int threads = static_cast<int>(state.range(0));
     for (auto _ : state) {
         const Printed p = run_raylane("", *scene, threads);
@@ -86,7 +86,7 @@ void BM_OneProcess(benchmark::State& state, const SceneData* scene) {
 }
 
 /// R ranks of T threads (range 0, 1).
-void BM_Ranks(benchmark::State& state, const SceneData* scene) {
+void BM_Ranks(benchmark::State& state, const BenchScene* scene) {
     const int ranks = static_cast<int>(state.range(0)), threads = static_cast<int>(state.range(1));
     double serving = 0, frame = 0;
     for (auto _ : state) {
@@ -102,7 +102,7 @@ void BM_Ranks(benchmark::State& state, const SceneData* scene) {
 }
 
 void register_all() {
-    for (const SceneData& s : scenes) {
+    for (const BenchScene& s : scenes) {
         benchmark::RegisterBenchmark((std::string("BM_OneProcess/") + s.name).c_str(),
                                      BM_OneProcess, &s)
             ->Arg(2)
@@ -124,7 +124,7 @@ void register_all() {
 void print_summary(const bench::Measured& m, std::ostream& out) {
     out << "\n| scene | 1 process x 2 threads | 2 ranks x 1 thread | speed, ranks / process | "
            "hand-out and gathering |\n|---|---|---|---|---|\n";
-    for (const SceneData& s : scenes) {
+    for (const BenchScene& s : scenes) {
         const std::string one =
             std::string("BM_OneProcess/") + s.name + "/threads:2/iterations:1/manual_time";
         const std::string two =
