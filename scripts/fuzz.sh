@@ -48,6 +48,7 @@ max_len_for() {
         ply) echo 8192 ;;
         image) echo 32768 ;;
         exr) echo 8192 ;;
+        api) echo 1024 ;;
         *) echo 8192 ;;
     esac
 }
@@ -62,6 +63,7 @@ runs_for() {
         ply) echo 500000 ;;
         image) echo 100000 ;;
         exr) echo 10000 ;;
+        api) echo 300000 ;;
         *) echo 200000 ;;
     esac
 }
