@@ -33,8 +33,8 @@ class SceneReader : JsonReader {
 
     std::string dir_;
     glm::dvec3 world_origin_{0.0};  ///< the world point stored as (0, 0, 0); set by read_camera
-    std::map<std::string, MeshData> meshes_;  ///< loaded meshes by resolved path, before baking,
-                                              ///< until their last object takes them
+    std::map<std::string, MeshData> meshes_;   ///< loaded meshes by resolved path, before baking,
+                                               ///< until their last object takes them
     std::map<std::string, int> mesh_uses_;     ///< objects still to read, by resolved path
     std::map<std::string, int32_t> textures_;  ///< texture index by file and options
     /// MTL libraries by resolved path (nullopt: missing, warned about once).
