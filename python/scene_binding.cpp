@@ -155,7 +155,7 @@ py::dict info(const Scene& scene) {
     d["memory_mib"] = double(s.memory_bytes) / (1024.0 * 1024.0);
     d["load_ms"] = s.load_ms;
     d["build_ms"] = s.build_ms;
-    d["build"] = "median split";
+    d["build"] = s.build == BvhBuild::sah ? "binned SAH" : "median split";
     py::dict phases;
     phases["centroids"] = s.build_phases_ms.centroids;
     phases["sorts"] = s.build_phases_ms.sorts;

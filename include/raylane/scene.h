@@ -22,6 +22,10 @@ enum class ImageKind {
     bvh_cost,  ///< BVH nodes visited by the pixel's camera rays
 };
 
+/// How a scene's BVHs are built: the report's median split (the default), or binned SAH, for
+/// comparison.
+enum class BvhBuild { median, sah };
+
 /// A render's settings; 0 keeps the scene's own value. One of width and height alone keeps the
 /// scene's aspect ratio.
 struct RenderSettings {
@@ -53,6 +57,7 @@ struct CompareSettings {
     int repeats = 3;          ///< timed renders per path, 1 .. 100; the times are medians
     double tolerance = 2e-3;  ///< largest channel difference the paths may show
     size_t id_allowance = 0;  ///< camera-ray hits allowed to name another object or triangle
+    bool progress = false;    ///< a progress line per render on stderr, when it is a terminal
 };
 
 /// The figures of `raylane compare`: both paths rendered, timed and compared.
@@ -108,6 +113,8 @@ struct BuildPhaseTimes {
 struct SceneStats {
     std::string source;  ///< the file loaded, or "<built-in>"
     int width = 0, height = 0, spp = 0;
+    int frames = 1;            ///< of the camera's animation (1: a still)
+    bool turntable = false;    ///< whether the animation is a turntable (else a camera path)
     bool fov_vertical = true;  ///< whether fov_deg spans the image's height (else its width)
     double fov_deg = 0.0;
     size_t objects = 0, spheres = 0, boxes = 0, cylinders = 0, planes = 0;
@@ -118,7 +125,8 @@ struct SceneStats {
     TreeStats top_level;      ///< the tree over the scene's objects
     size_t memory_bytes = 0;  ///< of every tree and the meshes' vertices
     double load_ms = 0.0, build_ms = 0.0;
-    BuildPhaseTimes build_phases_ms;
+    BvhBuild build = BvhBuild::median;
+    BuildPhaseTimes build_phases_ms;  ///< of a median-split build (all 0 for SAH)
 };
 
 /// A scene and its BVHs, built once at load. Copies share the scene; renders and comparisons
@@ -130,7 +138,7 @@ class Scene {
     /// file's name that is not a file here ("bunny.ply") is looked up on RAYLANE_MODEL_PATH, as
     /// are the models a scene names (beside the scene first). An empty path is the built-in
     /// scene. Throws Error with the file, line and reason when the file is not one.
-    static Scene load(const std::string& path);
+    static Scene load(const std::string& path, BvhBuild build = BvhBuild::median);
 
     /// Renders the scene. Throws Error when a setting is out of range.
     Image render(const RenderSettings& settings = {}) const;

@@ -10,6 +10,7 @@
 #include "accel/wide_bvh.h"
 #include "core/aabb.h"
 #include "core/pages.h"
+#include "raylane/scene.h"  // BvhBuild
 #include "scene/scene.h"
 
 namespace raylane {
@@ -37,9 +38,8 @@ struct Bvh {
     std::vector<uint32_t, OverwriteAllocator<uint32_t>> prim_ids;
 };
 
-/// How the BVHs are built: the report's median split (the default), or binned SAH as a
-/// comparison option.
-enum class BvhBuild { median, sah };
+// How the BVHs are built, BvhBuild (median split or binned SAH), is the public API's
+// (raylane/scene.h).
 
 /// BuildParams::median_subtree's default, 2^17 (131,072) primitives.
 inline constexpr uint32_t default_median_subtree = uint32_t(1) << 17;

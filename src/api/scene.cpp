@@ -23,6 +23,7 @@
 #include "render/render_scalar.h"
 #include "report/compare.h"
 #include "report/report_metrics.h"
+#include "scene/camera_path.h"
 #include "scene/features.h"
 #include "scene/resolution.h"
 
@@ -33,6 +34,7 @@ struct Scene::State {
     Accel accel;
     Camera camera;  ///< the file's camera; a render sets scene.camera to its own size
     double load_ms = 0.0, build_ms = 0.0;
+    BvhBuild build = BvhBuild::median;
     std::mutex mutex;  ///< one render or comparison at a time (each sets scene.camera)
 };
 
@@ -105,14 +107,17 @@ std::string model_or_path(const std::string& path) {
 
 Scene::Scene(std::shared_ptr<State> state) : state_(std::move(state)) {}
 
-Scene Scene::load(const std::string& path) {
+Scene Scene::load(const std::string& path, BvhBuild build) {
     return guarded([&] {
         auto s = std::make_shared<State>();
         const double t_load = now_seconds();
         s->scene = open_scene(model_or_path(path));
         s->load_ms = elapsed_ms(t_load);
         const double t_build = now_seconds();
-        s->accel = build_accel(s->scene, BuildParams{});
+        s->build = build;
+        BuildParams params;
+        params.method = build;
+        s->accel = build_accel(s->scene, params);
         s->build_ms = elapsed_ms(t_build);
         s->camera = s->scene.camera;
         return Scene(std::move(s));
@@ -149,18 +154,21 @@ Comparison Scene::compare(const CompareSettings& settings) const {
             throw Error("tolerance: must be a finite number >= 0");
         State& s = *state_;
         std::lock_guard<std::mutex> lock(s.mutex);
-        const RenderParams params =
+        RenderParams params =
             prepare(s, settings.spp, settings.threads, settings.width, settings.height);
         KeepFloatModes keep;
-        // as `raylane compare` times: an untimed 1-spp render per path, then the paths in turn
+        // as `raylane report` times: an untimed 1-spp render per path, then the paths in turn
         RenderParams warm = params;
         warm.spp = 1;
         (void)render_scalar(s.scene, s.accel, warm);
         (void)render_packet(s.scene, s.accel, warm);
         RenderResult scalar, packet;
         std::vector<double> scalar_s, packet_s;
+        params.progress = settings.progress;
         for (int r = 0; r < settings.repeats; ++r) {
+            params.progress_label = "scalar";
             RenderResult a = render_scalar(s.scene, s.accel, params);
+            params.progress_label = "packet";
             RenderResult b = render_packet(s.scene, s.accel, params);
             scalar_s.push_back(a.stats.seconds), packet_s.push_back(b.stats.seconds);
             if (r == 0) scalar = std::move(a), packet = std::move(b);
@@ -203,6 +211,8 @@ SceneStats Scene::stats() const {
     SceneStats d;
     d.source = s.source;
     d.width = c.width, d.height = c.height, d.spp = c.spp;
+    d.frames = frame_count(s.camera_path);
+    d.turntable = s.camera_path.turntable_frames > 0;
     d.fov_vertical = c.fov_axis == FovAxis::vertical;
     d.fov_deg = c.fov_deg;
     d.objects = s.objects.size(), d.spheres = s.spheres.size(), d.boxes = s.boxes.size();
@@ -234,6 +244,7 @@ SceneStats Scene::stats() const {
     d.top_level = tree_stats(top);
     d.memory_bytes = total + top.bytes;
     d.load_ms = st.load_ms, d.build_ms = st.build_ms;
+    d.build = st.build;
     BuildPhases sum;  // the meshes' builds, phase by phase (ms)
     for (const MeshAccel& m : st.accel.meshes) sum += m.phases;
     d.build_phases_ms = {sum.centroids, sum.sorts, sum.splits,

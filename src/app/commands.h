@@ -57,5 +57,7 @@ std::string unknown_option(const CLI::App& cmd, int argc, char** argv);
 
 /// The scene a command works on (io/open_scene.h's open_scene), its warnings printed on stderr.
 SceneData load_command_scene(const std::string& path);
+/// The same as the public API's raylane::Scene with its BVHs built by --bvh `bvh`.
+Scene load_command_scene(const std::string& path, const std::string& bvh);
 
 }  // namespace raylane

@@ -171,4 +171,11 @@ SceneData load_command_scene(const std::string& path) {
     return scene;
 }
 
+Scene load_command_scene(const std::string& path, const std::string& bvh) {
+    Scene scene = Scene::load(path, bvh == "sah" ? BvhBuild::sah : BvhBuild::median);
+    for (const std::string& w : scene.warnings())
+        std::fprintf(stderr, "raylane: warning: %s\n", w.c_str());
+    return scene;
+}
+
 }  // namespace raylane
