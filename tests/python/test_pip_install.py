@@ -120,6 +120,13 @@ def test_pip_install_builds_imports_renders_and_installs_the_stubs(work):
     python = make_venv(tmp / "env", env)
     run([python, "-m", "pip", "install", "--no-build-isolation", "."], env, cwd=tmp / "raylane")
     check_installed(python, env, cwd=tmp, venv=tmp / "env")
+    # the module's own tests pass against the installed module (no PYTHONPATH into a build)
+    tests = [os.path.join(SOURCE_DIR, "tests", "python", name) for name in
+             ("test_scene.py", "test_mesh_queries.py", "test_mesh_input.py", "test_isa.py",
+              "test_stubs.py")]
+    out = run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", *tests], env, cwd=tmp,
+              timeout=900)
+    assert " passed" in out and " failed" not in out, out[-2000:]
 
 
 def test_pip_wheel_installs_into_another_environment(work):
