@@ -12,13 +12,6 @@ namespace raylane {
 
 const char* version() { return RAYLANE_VERSION; }
 
-void check_range(const char* name, long long value, long long lo, long long hi) {
-    if (value >= lo && value <= hi) return;
-    std::string m = name;
-    m.append(": ").append(std::to_string(value)).append(" is outside ");
-    throw Error(m.append(std::to_string(lo)).append(" .. ").append(std::to_string(hi)));
-}
-
 std::vector<std::string> compiled_instruction_sets() {
     std::vector<std::string> names;
     for (Isa isa : all_isas)
