@@ -12,20 +12,13 @@
 #include <vector>
 
 #include "raylane/raylane.h"
+#include "support/api_error.h"
 
 namespace {
 
-const float inf = std::numeric_limits<float>::infinity();
+using raylane::test::error_of;
 
-template <class Call>
-std::string error_of(Call call) {
-    try {
-        call();
-    } catch (const raylane::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+const float inf = std::numeric_limits<float>::infinity();
 
 /// The unit square in z = 0 as two triangles: (0,0)-(1,0)-(1,1) and (0,0)-(1,1)-(0,1).
 raylane::Mesh square() {

@@ -10,19 +10,11 @@
 #include <thread>
 
 #include "raylane/raylane.h"
+#include "support/api_error.h"
 
 namespace {
 
-/// The message of the raylane::Error `call` throws ("" when it throws none).
-template <class Call>
-std::string error_of(Call call) {
-    try {
-        call();
-    } catch (const raylane::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using raylane::test::error_of;
 
 double mean(const raylane::Image& image) {
     double sum = 0.0;
